@@ -1,0 +1,9 @@
+# Warning and floating-point flags shared by every Kairos target.
+function(kairos_warnings target)
+    target_compile_options(${target} PRIVATE
+        -Wall -Wextra -Wpedantic
+        # Bit-identical results on one build: no fused multiply-add contraction, no fast-math.
+        -ffp-contract=off
+        # GNU unique symbols would pin the library in memory and stop dlclose from unloading it.
+        $<$<COMPILE_LANGUAGE:CXX>:-fno-gnu-unique>)
+endfunction()

@@ -1,0 +1,375 @@
+/* Kairos: continuous (space-time) collision detection of convex shapes. The one public C header. */
+#ifndef KAIROS_KAIROS_H
+#define KAIROS_KAIROS_H
+
+/*
+ * Conventions that hold for every function below.
+ *
+ * Units and frames. Lengths are in the caller's unit (any unit, used consistently). Times are
+ * fractions of one step, in [0, 1]. Every point and vector in a result is in the world frame
+ * unless its comment says otherwise. A pose maps a shape's local frame to the world frame:
+ * x -> R(orientation) * x + position.
+ *
+ * Status. Every fallible function returns an int32_t status: KAIROS_OK (0) or a negative
+ * KAIROS_ERROR_* value. On failure nothing is written to any output and no object is changed;
+ * kairos_last_error() then names the argument that was wrong and why. No function aborts,
+ * prints, or lets a C++ exception escape.
+ *
+ * Numbers. Every double given to the library must be finite (no NaN, no infinity); a
+ * quaternion must have unit length within KAIROS_QUAT_TOLERANCE (it is then normalised).
+ *
+ * Extensible input structs (kairos_query_settings, kairos_world_settings, kairos_step_stats)
+ * start with uint32_t struct_size and are passed by pointer only. Fill them with their
+ * kairos_*_init function, which sets struct_size and the library's defaults. Fields are only
+ * ever appended. The library accepts any struct_size from the first published size up: a
+ * larger size (a caller built against a newer header) is accepted when every byte past the
+ * fields this library knows is zero. A smaller size is KAIROS_ERROR_STRUCT_SIZE.
+ *
+ * Embedded settings. kairos_world_settings holds a kairos_query_settings by value. To keep the
+ * fields after it from ever shifting, kairos_query_settings is frozen: its size and layout are
+ * fixed for the whole major version 0 (its struct_size is still checked, to catch an
+ * uninitialised struct). Should queries need more options, they will come as a new struct with
+ * its own struct_size, taken by new functions and appended at the end of kairos_world_settings.
+ *
+ * Result structs (kairos_distance_result, kairos_cast_result, kairos_contact) are frozen: no
+ * struct_size, layout fixed for the major version. Growth goes through new functions with new
+ * result structs. kairos_step_stats is the one growing output: the library writes at most
+ * out->struct_size bytes of it.
+ *
+ * Threads. Shapes are immutable once made: any number of threads may query them at once, and
+ * retain/release are atomic. A world is used by one thread at a time (no internal locking).
+ * kairos_last_error() is per thread. There is no global state to set.
+ *
+ * Determinism. The same inputs on the same build give bit-identical results.
+ */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "kairos/kairos_version.h"
+
+#if defined(_WIN32)
+#  if defined(KAIROS_BUILDING_LIBRARY)
+#    define KAIROS_API __declspec(dllexport)
+#  else
+#    define KAIROS_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__)
+#  define KAIROS_API __attribute__((visibility("default")))
+#else
+#  define KAIROS_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------
+ * Status codes. Values are explicit and never renumbered; new codes take new values.
+ */
+#define KAIROS_OK                          0
+#define KAIROS_ERROR_NULL_ARGUMENT        -1  /* a required pointer was NULL */
+#define KAIROS_ERROR_INVALID_ARGUMENT     -2  /* NaN or infinite number, size <= 0, non-unit quaternion, singular matrix, unknown enum value */
+#define KAIROS_ERROR_STRUCT_SIZE          -3  /* struct_size too small, or a larger struct with a non-zero unknown tail */
+#define KAIROS_ERROR_DEGENERATE           -4  /* a point set with no volume: fewer than 4 points, or all collinear or coplanar */
+#define KAIROS_ERROR_STALE_ID             -5  /* an object id that is 0, unknown, or of a removed object */
+#define KAIROS_ERROR_OUT_OF_MEMORY        -6  /* an allocation failed; nothing was changed */
+#define KAIROS_ERROR_NOT_IMPLEMENTED      -7  /* declared in the contract, not yet built in this version */
+#define KAIROS_ERROR_UNSUPPORTED_VERSION  -8  /* kairos_get_api was asked for an ABI version this library does not provide */
+#define KAIROS_ERROR_INTERNAL             -9  /* a bug in Kairos: please report it with kairos_last_error() */
+#define KAIROS_ERROR_LIMIT               -10  /* a count beyond what the library supports (e.g. more than 2^32 - 1 objects) */
+
+/* Which rule ended an iteration (distance_result.termination, cast_result.termination).
+ * See ALGORITHMS.md section 2 for the rules. */
+#define KAIROS_TERMINATION_NONE              0  /* no iteration was needed (e.g. a zero-length ray) */
+#define KAIROS_TERMINATION_RELATIVE_ERROR    1  /* ||v||^2 - v.w <= tolerance * ||v||^2 (distance within tolerance) */
+#define KAIROS_TERMINATION_NEAR_CONTACT      2  /* ||v||^2 <= eps * max ||y||^2: touching within rounding */
+#define KAIROS_TERMINATION_FULL_SIMPLEX      3  /* the simplex holds the origin: the shapes intersect */
+#define KAIROS_TERMINATION_JOHNSON_FAILED    4  /* no valid sub-simplex even after the backup pass: last estimate returned */
+#define KAIROS_TERMINATION_REPEATED_SUPPORT  5  /* the support point was already in the simplex: converged to rounding */
+#define KAIROS_TERMINATION_NO_PROGRESS       6  /* ||v|| stopped decreasing by more than machine epsilon */
+#define KAIROS_TERMINATION_MAX_ITERATIONS    7  /* the iteration guard fired; the result is the best estimate so far */
+#define KAIROS_TERMINATION_SEPARATED         8  /* intersection test / cast: a separating axis was found (or the ray misses) */
+#define KAIROS_TERMINATION_HIT               9  /* cast: the ray point is within tolerance of the surface */
+
+/* Broad phases (kairos_world_settings.broad_phase). */
+#define KAIROS_BROAD_PHASE_SPACETIME_SAP     0  /* default: space-time sweep and prune, pairs at their first overlap moment */
+#define KAIROS_BROAD_PHASE_ENCAPSULATING_SAP 1  /* sweep and prune on boxes swept over the whole step (false positives) */
+#define KAIROS_BROAD_PHASE_BRUTE_FORCE       2  /* exact 4D box overlap of every pair, O(n^2): a reference */
+
+/* How far a quaternion's length may differ from 1 before it is rejected. */
+#define KAIROS_QUAT_TOLERANCE 1e-6
+
+/* Version of the function table returned by kairos_get_api. */
+#define KAIROS_ABI_VERSION 1u
+
+/* ---------------------------------------------------------------------------------------------
+ * Plain types. All are C structs of doubles with no padding surprises; layouts are frozen.
+ */
+typedef struct kairos_vec3 { double x, y, z; } kairos_vec3;
+/* A unit quaternion, x y z imaginary parts, w real part. The identity is {0, 0, 0, 1}. */
+typedef struct kairos_quat { double x, y, z, w; } kairos_quat;
+/* Maps a shape's local frame to the world: x -> R(orientation) * x + position. */
+typedef struct kairos_pose { kairos_vec3 position; kairos_quat orientation; } kairos_pose;
+/* One step, t in [0, 1]: the local origin moves linearly from start.position to end.position,
+ * and turns about it at constant angular velocity along the shortest arc from
+ * start.orientation to end.orientation. */
+typedef struct kairos_motion { kairos_pose start, end; } kairos_motion;
+
+/* A convex shape: opaque, immutable, reference counted. Composites retain their parts. */
+typedef struct kairos_shape kairos_shape;
+/* A world of moving objects: opaque; one thread at a time. */
+typedef struct kairos_world kairos_world;
+/* An object in a world: index and generation packed into 64 bits; 0 is never valid. A removed
+ * object's id stays invalid (KAIROS_ERROR_STALE_ID) even when its slot is reused. */
+typedef uint64_t kairos_object_id;
+
+/* ---------------------------------------------------------------------------------------------
+ * Library information.
+ */
+
+/* A static name for any status value, e.g. "KAIROS_ERROR_NULL_ARGUMENT"; "KAIROS_UNKNOWN_STATUS"
+ * for values this version does not know. Never NULL. Thread safe. */
+KAIROS_API const char* kairos_status_name(int32_t status);
+
+/* The message of the last failed call on this thread, naming the argument and the bad value.
+ * Never NULL; "" when nothing has failed on this thread yet. A successful call leaves it as it
+ * was. The buffer is per thread and is overwritten by the next failure on the same thread. */
+KAIROS_API const char* kairos_last_error(void);
+
+/* The runtime library's version as major*10000 + minor*100 + patch. Compare it with
+ * KAIROS_VERSION_NUMBER of the header you built against: equal majors are ABI compatible. */
+KAIROS_API uint32_t kairos_version(void);
+
+/* ---------------------------------------------------------------------------------------------
+ * Shapes. Every constructor writes a new shape with one reference to *out, which the caller
+ * owns and gives back with kairos_shape_release. Sizes must be finite and > 0 unless noted.
+ * Frames are those of C_API.md "Primitive frames".
+ */
+
+/* Ball of the given radius centred at the local origin. */
+KAIROS_API int32_t kairos_shape_sphere(double radius, kairos_shape** out);
+/* Box [-h, h] on each axis; every half extent finite and > 0. */
+KAIROS_API int32_t kairos_shape_box(kairos_vec3 half_extents, kairos_shape** out);
+/* The segment from (0,0,-half_height) to (0,0,+half_height) grown by radius: it spans
+ * +-(half_height + radius) along z. radius > 0; half_height >= 0 (0 gives a sphere). */
+KAIROS_API int32_t kairos_shape_capsule(double radius, double half_height, kairos_shape** out);
+/* Solid cylinder, axis z, z in [-half_height, half_height], radius radius. */
+KAIROS_API int32_t kairos_shape_cylinder(double radius, double half_height, kairos_shape** out);
+/* Solid cone, apex (0,0,+half_height), base disk of radius radius at z = -half_height. Its
+ * origin is the axis midpoint (as in FCL and Bullet), not its centre of mass. */
+KAIROS_API int32_t kairos_shape_cone(double radius, double half_height, kairos_shape** out);
+/* The local origin alone. */
+KAIROS_API int32_t kairos_shape_point(kairos_shape** out);
+/* The segment from (0,0,-half_length) to (0,0,+half_length). */
+KAIROS_API int32_t kairos_shape_segment(double half_length, kairos_shape** out);
+/* Convex hull of count points (local frame, never recentred). The points are copied; only the
+ * hull's vertices are kept (interior and duplicate points are dropped). Needs a solid: fewer than
+ * 4 points, or points all collinear or coplanar relative to the set's extent, give
+ * KAIROS_ERROR_DEGENERATE. points may be NULL only when count is 0 (which is degenerate). */
+KAIROS_API int32_t kairos_shape_convex_hull(const kairos_vec3* points, size_t count, kairos_shape** out);
+/* Minkowski sum a + b = {x + y}: e.g. a rounded box as box + sphere. Retains a and b. */
+KAIROS_API int32_t kairos_shape_minkowski_sum(const kairos_shape* a, const kairos_shape* b, kairos_shape** out);
+/* Convex hull of the union of a and b (both in the same local frame). Retains a and b. */
+KAIROS_API int32_t kairos_shape_hull(const kairos_shape* a, const kairos_shape* b, kairos_shape** out);
+/* s mapped by x -> linear * x + translation. linear is a row-major 3x3, finite and invertible
+ * (|det| > 1e-12 times the product of its row lengths); it may scale, shear or mirror. Retains s. */
+KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double linear[9],
+                                            kairos_vec3 translation, kairos_shape** out);
+/* Adds one reference. NULL is ignored. Thread safe. */
+KAIROS_API void kairos_shape_retain(kairos_shape* s);
+/* Drops one reference; the shape is freed with its last reference. NULL is ignored. */
+KAIROS_API void kairos_shape_release(kairos_shape* s);
+
+/* A point of s (local frame) farthest along direction: out maximises direction . x over s.
+ * direction need not be unit; it must be finite. For a zero direction every point qualifies and
+ * some point of s is returned. */
+KAIROS_API int32_t kairos_shape_support(const kairos_shape* s, kairos_vec3 direction, kairos_vec3* out);
+/* The tight axis-aligned box (world frame) of s at pose; pose NULL means identity. */
+KAIROS_API int32_t kairos_shape_bounds(const kairos_shape* s, const kairos_pose* pose,
+                                       kairos_vec3* min, kairos_vec3* max);
+
+/* ---------------------------------------------------------------------------------------------
+ * Pair queries. Shapes are posed by pose (NULL means identity). Queries only read the shapes, so
+ * any number may run at once on shared shapes.
+ */
+
+/* Frozen layout (see "Embedded settings" above). */
+typedef struct kairos_query_settings {
+    uint32_t struct_size;     /* sizeof(kairos_query_settings) */
+    double   tolerance;       /* relative accuracy, in (0, 1); default 1e-10. The accuracy/speed knob */
+    uint32_t max_iterations;  /* a guard only, >= 1; default 256 */
+} kairos_query_settings;
+/* Fills *s with struct_size and the defaults. NULL is ignored. */
+KAIROS_API void kairos_query_settings_init(kairos_query_settings* s);
+
+/* Frozen layout. */
+typedef struct kairos_distance_result {
+    double      distance;          /* >= 0; 0 when the shapes intersect */
+    kairos_vec3 point_a, point_b;  /* closest points on A and on B, world frame (equal when touching) */
+    kairos_vec3 axis;              /* unit, from A toward B; a separating axis when apart */
+    int32_t     intersecting;      /* 1 when the shapes overlap or touch, else 0 */
+    uint32_t    iterations;        /* GJK iterations used */
+    int32_t     termination;       /* KAIROS_TERMINATION_*: which rule ended the iteration */
+} kairos_distance_result;
+
+/* Frozen layout. */
+typedef struct kairos_cast_result {
+    int32_t     hit;          /* 1 when contact happens within the step, else 0 */
+    double      toi;          /* time of impact, fraction of the step in [0, 1]; 1 when no hit */
+    kairos_vec3 point;        /* contact point at toi, world frame (unspecified when no hit) */
+    kairos_vec3 normal;       /* unit contact normal at toi, from A toward B (ray cast: outward from the shape) */
+    uint32_t    iterations;   /* iterations used */
+    int32_t     termination;  /* KAIROS_TERMINATION_* */
+} kairos_cast_result;
+
+/* Distance, closest points and separating axis of a at pose_a and b at pose_b.
+ * settings NULL means defaults; tolerance is the relative error of the distance. */
+KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pose_a,
+                                   const kairos_shape* b, const kairos_pose* pose_b,
+                                   const kairos_query_settings* settings, kairos_distance_result* out);
+/* *out = 1 when the shapes overlap or touch, else 0. axis_cache (world frame, any length, may be
+ * NULL) seeds the search and receives a separating axis when one is found: keep one per pair
+ * and pass it again next frame, and a smoothly moving pair needs about one iteration. A zero or
+ * non-finite cached axis is replaced by a fresh start (not an error). */
+KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* pose_a,
+                                    const kairos_shape* b, const kairos_pose* pose_b,
+                                    kairos_vec3* axis_cache, int32_t* out);
+/* First hit of the ray origin + lambda * translation, lambda in [0, 1], on s at pose.
+ * toi is lambda; normal is outward from the shape. A ray starting inside: hit, toi 0. */
+KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pose,
+                                   kairos_vec3 origin, kairos_vec3 translation,
+                                   const kairos_query_settings* settings, kairos_cast_result* out);
+/* a translates by translation_a and b by translation_b over the step, from their poses; first
+ * time of impact in [0, 1], with normal from A toward B and the contact point at toi. */
+KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* pose_a, kairos_vec3 translation_a,
+                                     const kairos_shape* b, const kairos_pose* pose_b, kairos_vec3 translation_b,
+                                     const kairos_query_settings* settings, kairos_cast_result* out);
+/* a and b follow their motions (translation and rotation) over the step. Conservative: toi is
+ * never later than the true first contact by more than tolerance (a fraction of the step), and
+ * a contact is never missed. Motions with equal start and end orientations take the exact
+ * shape cast. */
+KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion* motion_a,
+                                      const kairos_shape* b, const kairos_motion* motion_b,
+                                      const kairos_query_settings* settings, kairos_cast_result* out);
+
+/* ---------------------------------------------------------------------------------------------
+ * World: broad phase and narrow phase over many moving objects. One thread at a time.
+ */
+typedef struct kairos_world_settings {
+    uint32_t struct_size;            /* sizeof(kairos_world_settings) */
+    int32_t  broad_phase;            /* KAIROS_BROAD_PHASE_*; default SPACETIME_SAP */
+    kairos_query_settings query;     /* narrow-phase settings; frozen layout, never shifts */
+} kairos_world_settings;
+
+/* Frozen layout. */
+typedef struct kairos_contact {
+    kairos_object_id a, b;        /* a < b */
+    uint64_t    user_a, user_b;   /* the user data given to kairos_world_add */
+    double      toi;              /* first contact of the pair, fraction of the step in [0, 1] */
+    kairos_vec3 point, normal;    /* world frame at toi; normal unit, from a toward b */
+} kairos_contact;
+
+/* Counters of the last step. Growing struct: the library writes at most struct_size bytes. */
+typedef struct kairos_step_stats {
+    uint32_t struct_size;           /* sizeof(kairos_step_stats) */
+    uint64_t broad_phase_pairs;     /* pairs the broad phase reported */
+    uint64_t swaps;                 /* endpoint swaps performed */
+    uint64_t heap_operations;       /* event-heap pushes, pops and key changes */
+    uint64_t narrow_phase_queries;  /* pair casts run */
+    uint64_t gjk_iterations;        /* GJK iterations summed over the narrow phase */
+    double   broad_phase_seconds;   /* wall time of the broad phase */
+    double   narrow_phase_seconds;  /* wall time of the narrow phase */
+} kairos_step_stats;
+
+/* Fills *s with struct_size and defaults. NULL is ignored. */
+KAIROS_API void kairos_world_settings_init(kairos_world_settings* s);
+/* Creates an empty world; settings NULL means defaults. Free it with kairos_world_destroy. */
+KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, kairos_world** out);
+/* Destroys the world and releases its references to shapes. NULL is ignored. */
+KAIROS_API void kairos_world_destroy(kairos_world* w);
+/* Adds an object with shape s (retained by the world) at pose (NULL: identity), standing still
+ * until moved. user_data is returned in contacts. */
+KAIROS_API int32_t kairos_world_add(kairos_world* w, kairos_shape* s, const kairos_pose* pose,
+                                    uint64_t user_data, kairos_object_id* out);
+/* Removes an object; its id becomes stale. */
+KAIROS_API int32_t kairos_world_remove(kairos_world* w, kairos_object_id id);
+/* Teleports an object at once, without a sweep, and cancels its pending move. */
+KAIROS_API int32_t kairos_world_set_pose(kairos_world* w, kairos_object_id id, const kairos_pose* pose);
+/* Sets the object's pose at the end of the next step (for that step only). */
+KAIROS_API int32_t kairos_world_move(kairos_world* w, kairos_object_id id, const kairos_pose* end);
+/* Finds each pair's first contact in [0, 1], then moves every object to its end pose. */
+KAIROS_API int32_t kairos_world_step(kairos_world* w);
+/* Contacts of the last step: one per pair, sorted by toi, ties by (a, b). *out stays valid until
+ * the next call that changes the world; do not store it. */
+KAIROS_API int32_t kairos_world_contacts(const kairos_world* w, const kairos_contact** out, size_t* count);
+/* Broad-phase pairs of the last step as 2 * count ids, smaller id first in each pair. Valid
+ * until the next call that changes the world. */
+KAIROS_API int32_t kairos_world_overlaps(const kairos_world* w, const kairos_object_id** pairs, size_t* count);
+/* Fills *s with struct_size (zeroed counters). NULL is ignored. */
+KAIROS_API void kairos_step_stats_init(kairos_step_stats* s);
+/* Counters of the last step; writes at most out->struct_size bytes. */
+KAIROS_API int32_t kairos_world_step_stats(const kairos_world* w, kairos_step_stats* out);
+
+/* ---------------------------------------------------------------------------------------------
+ * Function table for dlopen users: dlsym only "kairos_get_api", then call through the table.
+ * The table begins with struct_size and abi_version; function pointers are only ever appended,
+ * so a caller may use every entry that lies within struct_size.
+ */
+typedef struct kairos_api {
+    uint32_t struct_size;   /* sizeof the table this library provides */
+    uint32_t abi_version;   /* KAIROS_ABI_VERSION of this library */
+    const char* (*status_name)(int32_t);
+    const char* (*last_error)(void);
+    uint32_t (*version)(void);
+    int32_t (*shape_sphere)(double, kairos_shape**);
+    int32_t (*shape_box)(kairos_vec3, kairos_shape**);
+    int32_t (*shape_capsule)(double, double, kairos_shape**);
+    int32_t (*shape_cylinder)(double, double, kairos_shape**);
+    int32_t (*shape_cone)(double, double, kairos_shape**);
+    int32_t (*shape_point)(kairos_shape**);
+    int32_t (*shape_segment)(double, kairos_shape**);
+    int32_t (*shape_convex_hull)(const kairos_vec3*, size_t, kairos_shape**);
+    int32_t (*shape_minkowski_sum)(const kairos_shape*, const kairos_shape*, kairos_shape**);
+    int32_t (*shape_hull)(const kairos_shape*, const kairos_shape*, kairos_shape**);
+    int32_t (*shape_transformed)(const kairos_shape*, const double*, kairos_vec3, kairos_shape**);
+    void    (*shape_retain)(kairos_shape*);
+    void    (*shape_release)(kairos_shape*);
+    int32_t (*shape_support)(const kairos_shape*, kairos_vec3, kairos_vec3*);
+    int32_t (*shape_bounds)(const kairos_shape*, const kairos_pose*, kairos_vec3*, kairos_vec3*);
+    void    (*query_settings_init)(kairos_query_settings*);
+    int32_t (*distance)(const kairos_shape*, const kairos_pose*, const kairos_shape*, const kairos_pose*,
+                        const kairos_query_settings*, kairos_distance_result*);
+    int32_t (*intersect)(const kairos_shape*, const kairos_pose*, const kairos_shape*, const kairos_pose*,
+                         kairos_vec3*, int32_t*);
+    int32_t (*ray_cast)(const kairos_shape*, const kairos_pose*, kairos_vec3, kairos_vec3,
+                        const kairos_query_settings*, kairos_cast_result*);
+    int32_t (*shape_cast)(const kairos_shape*, const kairos_pose*, kairos_vec3,
+                          const kairos_shape*, const kairos_pose*, kairos_vec3,
+                          const kairos_query_settings*, kairos_cast_result*);
+    int32_t (*motion_cast)(const kairos_shape*, const kairos_motion*, const kairos_shape*, const kairos_motion*,
+                           const kairos_query_settings*, kairos_cast_result*);
+    void    (*world_settings_init)(kairos_world_settings*);
+    int32_t (*world_create)(const kairos_world_settings*, kairos_world**);
+    void    (*world_destroy)(kairos_world*);
+    int32_t (*world_add)(kairos_world*, kairos_shape*, const kairos_pose*, uint64_t, kairos_object_id*);
+    int32_t (*world_remove)(kairos_world*, kairos_object_id);
+    int32_t (*world_set_pose)(kairos_world*, kairos_object_id, const kairos_pose*);
+    int32_t (*world_move)(kairos_world*, kairos_object_id, const kairos_pose*);
+    int32_t (*world_step)(kairos_world*);
+    int32_t (*world_contacts)(const kairos_world*, const kairos_contact**, size_t*);
+    int32_t (*world_overlaps)(const kairos_world*, const kairos_object_id**, size_t*);
+    void    (*step_stats_init)(kairos_step_stats*);
+    int32_t (*world_step_stats)(const kairos_world*, kairos_step_stats*);
+} kairos_api;
+
+/* The function table for abi_version (1 <= abi_version <= KAIROS_ABI_VERSION of the library).
+ * The table is static: it lives as long as the library stays loaded. An unknown version gives
+ * KAIROS_ERROR_UNSUPPORTED_VERSION. */
+KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* KAIROS_KAIROS_H */

@@ -1,0 +1,101 @@
+// Small fixed-size linear algebra for the core: vectors, 3x3 matrices, quaternions, poses.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+namespace kairos {
+
+struct Vec3 {
+    double x = 0, y = 0, z = 0;
+    constexpr Vec3() = default;
+    constexpr Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+    constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+constexpr Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
+constexpr Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+constexpr Vec3 operator*(Vec3 a, double s) { return {s * a.x, s * a.y, s * a.z}; }
+constexpr Vec3 operator/(Vec3 a, double s) { return {a.x / s, a.y / s, a.z / s}; }
+inline Vec3& operator+=(Vec3& a, Vec3 b) { a = a + b; return a; }
+inline Vec3& operator-=(Vec3& a, Vec3 b) { a = a - b; return a; }
+constexpr bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+constexpr double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 cross(Vec3 a, Vec3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+constexpr double length_sq(Vec3 a) { return dot(a, a); }
+inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline double max_abs(Vec3 a) { return std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z))); }
+inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline Vec3 cwise_min(Vec3 a, Vec3 b) { return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)}; }
+inline Vec3 cwise_max(Vec3 a, Vec3 b) { return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)}; }
+
+// Unit vector along a, computed without overflow or underflow (scaled by the largest component
+// first). A zero vector gives `fallback`.
+inline Vec3 normalized_or(Vec3 a, Vec3 fallback) {
+    const double m = max_abs(a);
+    if (!(m > 0)) return fallback;  // also catches NaN
+    const Vec3 s = a / m;
+    return s / length(s);
+}
+
+// Row-major 3x3 matrix.
+struct Mat3 {
+    Vec3 r[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    static constexpr Mat3 identity() { return {}; }
+    constexpr Vec3 col(int j) const { return {r[0][j], r[1][j], r[2][j]}; }
+};
+constexpr Vec3 operator*(const Mat3& m, Vec3 v) { return {dot(m.r[0], v), dot(m.r[1], v), dot(m.r[2], v)}; }
+// m^T * v without forming the transpose.
+constexpr Vec3 mul_transpose(const Mat3& m, Vec3 v) { return m.r[0] * v.x + m.r[1] * v.y + m.r[2] * v.z; }
+inline Mat3 operator*(const Mat3& a, const Mat3& b) {
+    Mat3 c;
+    for (int i = 0; i < 3; ++i) c.r[i] = mul_transpose(b, a.r[i]);
+    return c;
+}
+inline Mat3 transpose(const Mat3& m) {
+    Mat3 t;
+    for (int i = 0; i < 3; ++i) t.r[i] = m.col(i);
+    return t;
+}
+inline double determinant(const Mat3& m) { return dot(m.r[0], cross(m.r[1], m.r[2])); }
+
+struct Quat {
+    double x = 0, y = 0, z = 0, w = 1;
+};
+inline Quat operator*(Quat a, Quat b) {
+    return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
+inline double norm(Quat q) { return std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w); }
+inline Quat normalized(Quat q) {
+    const double n = norm(q);
+    return {q.x / n, q.y / n, q.z / n, q.w / n};
+}
+// Rotation matrix of a unit quaternion.
+inline Mat3 to_matrix(Quat q) {
+    const double xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
+    const double xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
+    const double wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+    Mat3 m;
+    m.r[0] = {1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy)};
+    m.r[1] = {2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx)};
+    m.r[2] = {2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)};
+    return m;
+}
+
+// Rigid transform x -> rotation * x + translation (rotation orthonormal).
+struct Pose {
+    Mat3 rotation;
+    Vec3 translation;
+    Vec3 apply(Vec3 x) const { return rotation * x + translation; }
+    Vec3 apply_inverse(Vec3 x) const { return mul_transpose(rotation, x - translation); }
+    Vec3 to_local_direction(Vec3 d) const { return mul_transpose(rotation, d); }
+};
+inline Pose make_pose(Vec3 position, Quat orientation) { return {to_matrix(orientation), position}; }
+
+}  // namespace kairos

@@ -1,0 +1,188 @@
+// Convex shapes as support mappings: the immutable, reference-counted shape objects of the core.
+//
+// A shape stores only what its support mapping needs (a box is three half extents). Support
+// dispatch is a switch on the kind, inlined into the callers: no virtual call per support point.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "math.hpp"
+
+namespace kairos {
+
+enum class ShapeKind : uint8_t {
+    Point,
+    Segment,      // (0,0,-h) .. (0,0,+h)
+    Sphere,       // radius about the origin
+    Box,          // [-h, h] per axis
+    Capsule,      // segment (0,0,+-h) grown by radius
+    Cylinder,     // radius, z in [-h, h]
+    Cone,         // apex (0,0,+h), base disk radius r at z = -h
+    ConvexHull,   // vertices of a convex polytope
+    Transformed,  // x -> linear * x + translation of a child
+    MinkowskiSum, // a + b
+    HullOfTwo,    // conv(a u b)
+};
+
+// Base of every shape. Reference counted (atomic), immutable after construction. Composites
+// hold a reference to each part. Created with one reference; `release` deletes at zero.
+class Shape {
+public:
+    Shape(const Shape&) = delete;
+    Shape& operator=(const Shape&) = delete;
+    virtual ~Shape() = default;
+
+    ShapeKind kind() const { return kind_; }
+    void retain() const { refs_.fetch_add(1, std::memory_order_relaxed); }
+    void release() const {
+        if (refs_.fetch_sub(1, std::memory_order_acq_rel) == 1) delete this;
+    }
+    uint32_t reference_count() const { return refs_.load(std::memory_order_relaxed); }
+
+protected:
+    explicit Shape(ShapeKind kind) : kind_(kind) {}
+
+private:
+    mutable std::atomic<uint32_t> refs_{1};
+    ShapeKind kind_;
+};
+
+struct PointShape final : Shape {
+    PointShape() : Shape(ShapeKind::Point) {}
+};
+struct SegmentShape final : Shape {
+    explicit SegmentShape(double h) : Shape(ShapeKind::Segment), half_length(h) {}
+    double half_length;
+};
+struct SphereShape final : Shape {
+    explicit SphereShape(double r) : Shape(ShapeKind::Sphere), radius(r) {}
+    double radius;
+};
+struct BoxShape final : Shape {
+    explicit BoxShape(Vec3 h) : Shape(ShapeKind::Box), half_extents(h) {}
+    Vec3 half_extents;
+};
+struct CapsuleShape final : Shape {
+    CapsuleShape(double r, double h) : Shape(ShapeKind::Capsule), radius(r), half_height(h) {}
+    double radius, half_height;
+};
+struct CylinderShape final : Shape {
+    CylinderShape(double r, double h) : Shape(ShapeKind::Cylinder), radius(r), half_height(h) {}
+    double radius, half_height;
+};
+struct ConeShape final : Shape {
+    ConeShape(double r, double h) : Shape(ShapeKind::Cone), radius(r), half_height(h) {}
+    double radius, half_height;
+};
+
+// A convex polytope by its vertices only. `neighbors` lists, for vertex i, the indices
+// neighbors[neighbor_offsets[i] .. neighbor_offsets[i+1]) joined to it by a hull edge; it is
+// filled only when the hull has more than kHillClimbThreshold vertices (support then climbs).
+struct ConvexHullShape final : Shape {
+    static constexpr size_t kHillClimbThreshold = 32;
+    ConvexHullShape() : Shape(ShapeKind::ConvexHull) {}
+    std::vector<Vec3> vertices;
+    std::vector<uint32_t> neighbor_offsets;
+    std::vector<uint32_t> neighbors;
+    Vec3 support(Vec3 d) const;  // in hull.cpp
+};
+
+struct TransformedShape final : Shape {
+    TransformedShape(const Shape& c, const Mat3& l, Vec3 t) : Shape(ShapeKind::Transformed), child(&c), linear(l), translation(t) {
+        child->retain();
+    }
+    ~TransformedShape() override { child->release(); }
+    const Shape* child;
+    Mat3 linear;
+    Vec3 translation;
+};
+struct MinkowskiSumShape final : Shape {
+    MinkowskiSumShape(const Shape& a_, const Shape& b_) : Shape(ShapeKind::MinkowskiSum), a(&a_), b(&b_) {
+        a->retain();
+        b->retain();
+    }
+    ~MinkowskiSumShape() override { a->release(); b->release(); }
+    const Shape* a;
+    const Shape* b;
+};
+struct HullOfTwoShape final : Shape {
+    HullOfTwoShape(const Shape& a_, const Shape& b_) : Shape(ShapeKind::HullOfTwo), a(&a_), b(&b_) {
+        a->retain();
+        b->retain();
+    }
+    ~HullOfTwoShape() override { a->release(); b->release(); }
+    const Shape* a;
+    const Shape* b;
+};
+
+// Sign used by supports: +1 for zero, so a zero direction still yields a point of the shape.
+inline double support_sign(double v) { return v < 0 ? -1.0 : 1.0; }
+
+// A point of `s` (local frame) maximising d . x. Any finite d, zero included.
+inline Vec3 support(const Shape& s, Vec3 d) {
+    switch (s.kind()) {
+        case ShapeKind::Point:
+            return {};
+        case ShapeKind::Segment:
+            return {0, 0, support_sign(d.z) * static_cast<const SegmentShape&>(s).half_length};
+        case ShapeKind::Sphere:
+            return static_cast<const SphereShape&>(s).radius * normalized_or(d, {0, 0, 1});
+        case ShapeKind::Box: {
+            const Vec3 h = static_cast<const BoxShape&>(s).half_extents;
+            return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z};
+        }
+        case ShapeKind::Capsule: {
+            const auto& c = static_cast<const CapsuleShape&>(s);
+            return Vec3{0, 0, support_sign(d.z) * c.half_height} + c.radius * normalized_or(d, {0, 0, 1});
+        }
+        case ShapeKind::Cylinder: {
+            const auto& c = static_cast<const CylinderShape&>(s);
+            const Vec3 radial = normalized_or({d.x, d.y, 0}, {0, 0, 0});
+            return {c.radius * radial.x, c.radius * radial.y, support_sign(d.z) * c.half_height};
+        }
+        case ShapeKind::Cone: {
+            const auto& c = static_cast<const ConeShape&>(s);
+            const Vec3 radial = normalized_or({d.x, d.y, 0}, {0, 0, 0});
+            // Apex when d.z*h >= d.(base rim point) = r*|d_xy| - d.z*h.
+            const double apex_score = d.z * c.half_height;
+            const double rim_score = c.radius * (d.x * radial.x + d.y * radial.y) - d.z * c.half_height;
+            if (apex_score >= rim_score) return {0, 0, c.half_height};
+            return {c.radius * radial.x, c.radius * radial.y, -c.half_height};
+        }
+        case ShapeKind::ConvexHull:
+            return static_cast<const ConvexHullShape&>(s).support(d);
+        case ShapeKind::Transformed: {
+            const auto& t = static_cast<const TransformedShape&>(s);
+            return t.linear * support(*t.child, mul_transpose(t.linear, d)) + t.translation;
+        }
+        case ShapeKind::MinkowskiSum: {
+            const auto& m = static_cast<const MinkowskiSumShape&>(s);
+            return support(*m.a, d) + support(*m.b, d);
+        }
+        case ShapeKind::HullOfTwo: {
+            const auto& h = static_cast<const HullOfTwoShape&>(s);
+            const Vec3 pa = support(*h.a, d), pb = support(*h.b, d);
+            return dot(d, pb) > dot(d, pa) ? pb : pa;
+        }
+    }
+    return {};
+}
+
+// Support of the shape placed at `pose`, in world frame.
+inline Vec3 support(const Shape& s, const Pose& pose, Vec3 world_direction) {
+    return pose.apply(support(s, pose.to_local_direction(world_direction)));
+}
+
+// Tight axis-aligned box of the shape at `pose` (world frame), from six support queries.
+void bounds(const Shape& s, const Pose& pose, Vec3& out_min, Vec3& out_max);
+
+// Convex hull construction (hull.cpp).
+enum class HullStatus { Ok, TooFewPoints, Collinear, Coplanar, NonFinite };
+// Builds the hull of `count` finite points. On Ok, *out_shape holds a new shape (one reference).
+// Throws std::bad_alloc on allocation failure.
+HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** out_shape);
+
+}  // namespace kairos
