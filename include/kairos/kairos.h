@@ -27,8 +27,8 @@
  *
  * Embedded settings. kairos_world_settings holds a kairos_query_settings by value. To keep the
  * fields after it from ever shifting, kairos_query_settings is frozen: its size and layout are
- * fixed for the whole major version 0 (its struct_size is still checked, to catch an
- * uninitialised struct). Should queries need more options, they will come as a new struct with
+ * fixed for the whole major version 0, and its struct_size must equal
+ * sizeof(kairos_query_settings) (checked, to catch an uninitialised struct). Should queries need more options, they will come as a new struct with
  * its own struct_size, taken by new functions and appended at the end of kairos_world_settings.
  *
  * Result structs (kairos_distance_result, kairos_cast_result, kairos_contact) are frozen: no
@@ -41,6 +41,11 @@
  * kairos_last_error() is per thread. There is no global state to set.
  *
  * Determinism. The same inputs on the same build give bit-identical results.
+ *
+ * Not yet built. The contract is fixed before the algorithms: in this version
+ * kairos_distance, kairos_intersect, kairos_ray_cast, kairos_shape_cast, kairos_motion_cast and
+ * kairos_world_step check every argument (bad input gets its own status) and then return
+ * KAIROS_ERROR_NOT_IMPLEMENTED. Each section below says which version builds them.
  */
 
 #include <stddef.h>
@@ -196,7 +201,7 @@ KAIROS_API int32_t kairos_shape_bounds(const kairos_shape* s, const kairos_pose*
 
 /* Frozen layout (see "Embedded settings" above). */
 typedef struct kairos_query_settings {
-    uint32_t struct_size;     /* sizeof(kairos_query_settings) */
+    uint32_t struct_size;     /* must equal sizeof(kairos_query_settings) */
     double   tolerance;       /* relative accuracy, in (0, 1); default 1e-10. The accuracy/speed knob */
     uint32_t max_iterations;  /* a guard only, >= 1; default 256 */
 } kairos_query_settings;

@@ -1,0 +1,165 @@
+// C API world: the handle, object bookkeeping, step, contacts, overlaps and step stats.
+#include <cstring>
+#include <vector>
+
+#include "boundary.hpp"
+#include "world.hpp"
+
+using namespace kairos;
+using namespace kairos::capi;
+
+// The handle behind kairos_world: the core world plus what the C API hands out by pointer.
+struct kairos_world {
+    World core;
+    int32_t broad_phase = KAIROS_BROAD_PHASE_SPACETIME_SAP;
+    QuerySettings query{};
+    std::vector<kairos_contact> contacts;  // the core's contacts in C layout, valid until the next change
+};
+
+namespace {
+
+BodyState state_of(const BodyPose& p) { return {p.position, p.orientation}; }
+
+World::Object& live_object(kairos_world* w, kairos_object_id id, const char* function) {
+    World::Object* o = w->core.find(id);
+    if (o == nullptr)
+        fail(KAIROS_ERROR_STALE_ID, function, "id %llu is %s", static_cast<unsigned long long>(id),
+             id == 0 ? "0, which is never a valid id" : "not a live object of this world (unknown or removed)");
+    return *o;
+}
+
+}  // namespace
+
+extern "C" {
+
+KAIROS_API void kairos_world_settings_init(kairos_world_settings* s) {
+    if (s == nullptr) return;
+    std::memset(s, 0, sizeof *s);
+    s->struct_size = sizeof(kairos_world_settings);
+    s->broad_phase = KAIROS_BROAD_PHASE_SPACETIME_SAP;
+    kairos_query_settings_init(&s->query);
+}
+
+KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, kairos_world** out) {
+    return guarded(__func__, [&] {
+        kairos_world_settings defaults;
+        kairos_world_settings_init(&defaults);
+        if (settings == nullptr) settings = &defaults;
+        require_struct_size(settings, settings->struct_size, sizeof(kairos_world_settings), __func__, "settings");
+        const int32_t bp = settings->broad_phase;
+        if (bp != KAIROS_BROAD_PHASE_SPACETIME_SAP && bp != KAIROS_BROAD_PHASE_ENCAPSULATING_SAP &&
+            bp != KAIROS_BROAD_PHASE_BRUTE_FORCE)
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, __func__, "settings->broad_phase %d is not a KAIROS_BROAD_PHASE_* value", bp);
+        const QuerySettings qs = read_query_settings(&settings->query, __func__, "settings->query");
+        require_pointer(out, __func__, "out");
+        auto* w = new kairos_world;
+        w->broad_phase = bp;
+        w->query = qs;
+        *out = w;
+    });
+}
+
+KAIROS_API void kairos_world_destroy(kairos_world* w) { delete w; }
+
+KAIROS_API int32_t kairos_world_add(kairos_world* w, kairos_shape* s, const kairos_pose* pose, uint64_t user_data,
+                                    kairos_object_id* out) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        require_pointer(s, __func__, "s");
+        const BodyPose p = read_pose(pose, __func__, "pose");
+        require_pointer(out, __func__, "out");
+        const uint64_t id = w->core.add(shape_of(s), state_of(p), user_data);
+        if (id == 0) fail(KAIROS_ERROR_LIMIT, __func__, "the world holds the maximum number of objects");
+        *out = id;
+    });
+}
+
+KAIROS_API int32_t kairos_world_remove(kairos_world* w, kairos_object_id id) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        live_object(w, id, __func__);
+        w->core.remove(id);
+    });
+}
+
+KAIROS_API int32_t kairos_world_set_pose(kairos_world* w, kairos_object_id id, const kairos_pose* pose) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        World::Object& o = live_object(w, id, __func__);
+        require_pointer(pose, __func__, "pose");
+        const BodyState p = state_of(read_pose(pose, __func__, "pose"));
+        o.pose = p;
+        o.end = p;
+        o.moving = false;
+    });
+}
+
+KAIROS_API int32_t kairos_world_move(kairos_world* w, kairos_object_id id, const kairos_pose* end) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        World::Object& o = live_object(w, id, __func__);
+        require_pointer(end, __func__, "end");
+        o.end = state_of(read_pose(end, __func__, "end"));
+        o.moving = true;
+    });
+}
+
+KAIROS_API int32_t kairos_world_step(kairos_world* w) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        fail(KAIROS_ERROR_NOT_IMPLEMENTED, __func__, "not implemented in this version");
+    });
+}
+
+KAIROS_API int32_t kairos_world_contacts(const kairos_world* w, const kairos_contact** out, size_t* count) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        require_pointer(out, __func__, "out");
+        require_pointer(count, __func__, "count");
+        *out = w->contacts.data();
+        *count = w->contacts.size();
+    });
+}
+
+KAIROS_API int32_t kairos_world_overlaps(const kairos_world* w, const kairos_object_id** pairs, size_t* count) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        require_pointer(pairs, __func__, "pairs");
+        require_pointer(count, __func__, "count");
+        *pairs = w->core.overlaps.data();
+        *count = w->core.overlaps.size() / 2;
+    });
+}
+
+KAIROS_API void kairos_step_stats_init(kairos_step_stats* s) {
+    if (s == nullptr) return;
+    std::memset(s, 0, sizeof *s);
+    s->struct_size = sizeof(kairos_step_stats);
+}
+
+KAIROS_API int32_t kairos_world_step_stats(const kairos_world* w, kairos_step_stats* out) {
+    return guarded(__func__, [&] {
+        require_pointer(w, __func__, "w");
+        require_pointer(out, __func__, "out");
+        if (out->struct_size < sizeof(uint32_t))
+            fail(KAIROS_ERROR_STRUCT_SIZE, __func__, "out->struct_size is %u; call kairos_step_stats_init", out->struct_size);
+        const StepCounters& c = w->core.counters;
+        kairos_step_stats full;
+        kairos_step_stats_init(&full);
+        full.broad_phase_pairs = c.broad_phase_pairs;
+        full.swaps = c.swaps;
+        full.heap_operations = c.heap_operations;
+        full.narrow_phase_queries = c.narrow_phase_queries;
+        full.gjk_iterations = c.gjk_iterations;
+        full.broad_phase_seconds = c.broad_phase_seconds;
+        full.narrow_phase_seconds = c.narrow_phase_seconds;
+        // Older callers know a prefix; newer ones keep their unknown tail untouched.
+        const size_t n = out->struct_size < sizeof full ? out->struct_size : sizeof full;
+        const uint32_t caller_size = out->struct_size;
+        std::memcpy(reinterpret_cast<unsigned char*>(out) + sizeof(uint32_t),
+                    reinterpret_cast<const unsigned char*>(&full) + sizeof(uint32_t), n - sizeof(uint32_t));
+        out->struct_size = caller_size;
+    });
+}
+
+}  // extern "C"
