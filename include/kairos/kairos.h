@@ -45,7 +45,7 @@
  * Not yet built. The contract is fixed before the algorithms: in this version
  * kairos_distance, kairos_intersect, kairos_ray_cast, kairos_shape_cast, kairos_motion_cast and
  * kairos_world_step check every argument (bad input gets its own status) and then return
- * KAIROS_ERROR_NOT_IMPLEMENTED. Each section below says which version builds them.
+ * KAIROS_ERROR_NOT_IMPLEMENTED; later 0.x versions build them without changing the contract.
  */
 
 #include <stddef.h>
