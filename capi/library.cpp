@@ -70,11 +70,12 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         kairos_step_stats_init,
         kairos_world_step_stats,
     };
-    return kairos::capi::guarded(__func__, [&] {
+    const char* const fn = __func__;
+    return kairos::capi::guarded(fn, [&] {
         using kairos::capi::fail;
-        kairos::capi::require_pointer(out, __func__, "out");
+        kairos::capi::require_pointer(out, fn, "out");
         if (abi_version < 1 || abi_version > KAIROS_ABI_VERSION)
-            fail(KAIROS_ERROR_UNSUPPORTED_VERSION, __func__, "abi_version %u is not provided (this library provides 1 to %u)",
+            fail(KAIROS_ERROR_UNSUPPORTED_VERSION, fn, "abi_version %u is not provided (this library provides 1 to %u)",
                  abi_version, KAIROS_ABI_VERSION);
         *out = &table;
     });

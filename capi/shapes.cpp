@@ -16,78 +16,86 @@ void publish(const Shape* s, kairos_shape** out) { *out = handle_of(s); }
 extern "C" {
 
 KAIROS_API int32_t kairos_shape_sphere(double radius, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_size(radius, __func__, "radius");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_size(radius, fn, "radius");
+        require_pointer(out, fn, "out");
         publish(new SphereShape(radius), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_box(kairos_vec3 half_extents, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_size(half_extents.x, __func__, "half_extents.x");
-        require_size(half_extents.y, __func__, "half_extents.y");
-        require_size(half_extents.z, __func__, "half_extents.z");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_size(half_extents.x, fn, "half_extents.x");
+        require_size(half_extents.y, fn, "half_extents.y");
+        require_size(half_extents.z, fn, "half_extents.z");
+        require_pointer(out, fn, "out");
         publish(new BoxShape({half_extents.x, half_extents.y, half_extents.z}), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_capsule(double radius, double half_height, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_size(radius, __func__, "radius");
-        require_size(half_height, __func__, "half_height", /*allow_zero=*/true);
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_size(radius, fn, "radius");
+        require_size(half_height, fn, "half_height", /*allow_zero=*/true);
+        require_pointer(out, fn, "out");
         publish(new CapsuleShape(radius, half_height), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_cylinder(double radius, double half_height, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_size(radius, __func__, "radius");
-        require_size(half_height, __func__, "half_height");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_size(radius, fn, "radius");
+        require_size(half_height, fn, "half_height");
+        require_pointer(out, fn, "out");
         publish(new CylinderShape(radius, half_height), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_cone(double radius, double half_height, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_size(radius, __func__, "radius");
-        require_size(half_height, __func__, "half_height");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_size(radius, fn, "radius");
+        require_size(half_height, fn, "half_height");
+        require_pointer(out, fn, "out");
         publish(new ConeShape(radius, half_height), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_point(kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(out, fn, "out");
         publish(new PointShape(), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_segment(double half_length, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_size(half_length, __func__, "half_length");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_size(half_length, fn, "half_length");
+        require_pointer(out, fn, "out");
         publish(new SegmentShape(half_length), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_convex_hull(const kairos_vec3* points, size_t count, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        if (count > 0) require_pointer(points, __func__, "points");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        if (count > 0) require_pointer(points, fn, "points");
+        require_pointer(out, fn, "out");
         if (count > UINT32_MAX)
-            fail(KAIROS_ERROR_LIMIT, __func__, "count %zu exceeds the limit of %u points", count, UINT32_MAX);
+            fail(KAIROS_ERROR_LIMIT, fn, "count %zu exceeds the limit of %u points", count, UINT32_MAX);
         if (count < 4)
-            fail(KAIROS_ERROR_DEGENERATE, __func__, "count is %zu: a solid hull needs at least 4 points", count);
+            fail(KAIROS_ERROR_DEGENERATE, fn, "count is %zu: a solid hull needs at least 4 points", count);
         char name[64];
         for (size_t i = 0; i < count; ++i) {
             if (!is_finite({points[i].x, points[i].y, points[i].z})) {
                 std::snprintf(name, sizeof name, "points[%zu]", i);
-                read_vec3(points[i], __func__, name);  // names the bad coordinate and throws
+                read_vec3(points[i], fn, name);  // names the bad coordinate and throws
             }
         }
         // kairos_vec3 and Vec3 are both three doubles; copy rather than alias across types.
@@ -97,48 +105,51 @@ KAIROS_API int32_t kairos_shape_convex_hull(const kairos_vec3* points, size_t co
         switch (make_convex_hull(local.data(), count, &hull)) {
             case HullStatus::Ok: break;
             case HullStatus::TooFewPoints:
-                fail(KAIROS_ERROR_DEGENERATE, __func__, "points: fewer than 4 distinct points (count %zu)", count);
+                fail(KAIROS_ERROR_DEGENERATE, fn, "points: fewer than 4 distinct points (count %zu)", count);
             case HullStatus::Collinear:
-                fail(KAIROS_ERROR_DEGENERATE, __func__, "points: all %zu points are collinear (relative to their extent)", count);
+                fail(KAIROS_ERROR_DEGENERATE, fn, "points: all %zu points are collinear (relative to their extent)", count);
             case HullStatus::Coplanar:
-                fail(KAIROS_ERROR_DEGENERATE, __func__, "points: all %zu points are coplanar (relative to their extent)", count);
+                fail(KAIROS_ERROR_DEGENERATE, fn, "points: all %zu points are coplanar (relative to their extent)", count);
             case HullStatus::NonFinite:
-                fail(KAIROS_ERROR_INVALID_ARGUMENT, __func__, "points: a coordinate is not finite");
+                fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "points: a coordinate is not finite");
         }
         publish(hull, out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_minkowski_sum(const kairos_shape* a, const kairos_shape* b, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_pointer(a, __func__, "a");
-        require_pointer(b, __func__, "b");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(a, fn, "a");
+        require_pointer(b, fn, "b");
+        require_pointer(out, fn, "out");
         publish(new MinkowskiSumShape(shape_of(a), shape_of(b)), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_hull(const kairos_shape* a, const kairos_shape* b, kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_pointer(a, __func__, "a");
-        require_pointer(b, __func__, "b");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(a, fn, "a");
+        require_pointer(b, fn, "b");
+        require_pointer(out, fn, "out");
         publish(new HullOfTwoShape(shape_of(a), shape_of(b)), out);
     });
 }
 
 KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double linear[9], kairos_vec3 translation,
                                             kairos_shape** out) {
-    return guarded(__func__, [&] {
-        require_pointer(s, __func__, "s");
-        require_pointer(linear, __func__, "linear");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(s, fn, "s");
+        require_pointer(linear, fn, "linear");
         char name[32];
         for (int i = 0; i < 9; ++i) {
             std::snprintf(name, sizeof name, "linear[%d]", i);
-            require_finite(linear[i], __func__, name);
+            require_finite(linear[i], fn, name);
         }
-        const Vec3 t = read_vec3(translation, __func__, "translation");
-        require_pointer(out, __func__, "out");
+        const Vec3 t = read_vec3(translation, fn, "translation");
+        require_pointer(out, fn, "out");
         Mat3 m;
         for (int i = 0; i < 3; ++i) m.r[i] = {linear[3 * i], linear[3 * i + 1], linear[3 * i + 2]};
         // Invertible relative to its own scale: |det| against the product of the row lengths
@@ -146,7 +157,7 @@ KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double 
         const double bound = length(m.r[0]) * length(m.r[1]) * length(m.r[2]);
         const double det = determinant(m);
         if (!(std::fabs(det) > 1e-12 * bound))
-            fail(KAIROS_ERROR_INVALID_ARGUMENT, __func__,
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, fn,
                  "linear is singular or nearly so (det %g, product of row lengths %g)", det, bound);
         publish(new TransformedShape(shape_of(s), m, t), out);
     });
@@ -161,21 +172,23 @@ KAIROS_API void kairos_shape_release(kairos_shape* s) {
 }
 
 KAIROS_API int32_t kairos_shape_support(const kairos_shape* s, kairos_vec3 direction, kairos_vec3* out) {
-    return guarded(__func__, [&] {
-        require_pointer(s, __func__, "s");
-        const Vec3 d = read_vec3(direction, __func__, "direction");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(s, fn, "s");
+        const Vec3 d = read_vec3(direction, fn, "direction");
+        require_pointer(out, fn, "out");
         *out = to_c(support(shape_of(s), d));
     });
 }
 
 KAIROS_API int32_t kairos_shape_bounds(const kairos_shape* s, const kairos_pose* pose, kairos_vec3* min,
                                        kairos_vec3* max) {
-    return guarded(__func__, [&] {
-        require_pointer(s, __func__, "s");
-        const BodyPose p = read_pose(pose, __func__, "pose");
-        require_pointer(min, __func__, "min");
-        require_pointer(max, __func__, "max");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(s, fn, "s");
+        const BodyPose p = read_pose(pose, fn, "pose");
+        require_pointer(min, fn, "min");
+        require_pointer(max, fn, "max");
         Vec3 lo, hi;
         bounds(shape_of(s), p.rigid(), lo, hi);
         *min = to_c(lo);

@@ -41,17 +41,18 @@ KAIROS_API void kairos_world_settings_init(kairos_world_settings* s) {
 }
 
 KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, kairos_world** out) {
-    return guarded(__func__, [&] {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
         kairos_world_settings defaults;
         kairos_world_settings_init(&defaults);
         if (settings == nullptr) settings = &defaults;
-        require_struct_size(settings, settings->struct_size, sizeof(kairos_world_settings), __func__, "settings");
+        require_struct_size(settings, settings->struct_size, sizeof(kairos_world_settings), fn, "settings");
         const int32_t bp = settings->broad_phase;
         if (bp != KAIROS_BROAD_PHASE_SPACETIME_SAP && bp != KAIROS_BROAD_PHASE_ENCAPSULATING_SAP &&
             bp != KAIROS_BROAD_PHASE_BRUTE_FORCE)
-            fail(KAIROS_ERROR_INVALID_ARGUMENT, __func__, "settings->broad_phase %d is not a KAIROS_BROAD_PHASE_* value", bp);
-        const QuerySettings qs = read_query_settings(&settings->query, __func__, "settings->query");
-        require_pointer(out, __func__, "out");
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "settings->broad_phase %d is not a KAIROS_BROAD_PHASE_* value", bp);
+        const QuerySettings qs = read_query_settings(&settings->query, fn, "settings->query");
+        require_pointer(out, fn, "out");
         auto* w = new kairos_world;
         w->broad_phase = bp;
         w->query = qs;
@@ -63,31 +64,34 @@ KAIROS_API void kairos_world_destroy(kairos_world* w) { delete w; }
 
 KAIROS_API int32_t kairos_world_add(kairos_world* w, kairos_shape* s, const kairos_pose* pose, uint64_t user_data,
                                     kairos_object_id* out) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        require_pointer(s, __func__, "s");
-        const BodyPose p = read_pose(pose, __func__, "pose");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        require_pointer(s, fn, "s");
+        const BodyPose p = read_pose(pose, fn, "pose");
+        require_pointer(out, fn, "out");
         const uint64_t id = w->core.add(shape_of(s), state_of(p), user_data);
-        if (id == 0) fail(KAIROS_ERROR_LIMIT, __func__, "the world holds the maximum number of objects");
+        if (id == 0) fail(KAIROS_ERROR_LIMIT, fn, "the world holds the maximum number of objects");
         *out = id;
     });
 }
 
 KAIROS_API int32_t kairos_world_remove(kairos_world* w, kairos_object_id id) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        live_object(w, id, __func__);
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        live_object(w, id, fn);
         w->core.remove(id);
     });
 }
 
 KAIROS_API int32_t kairos_world_set_pose(kairos_world* w, kairos_object_id id, const kairos_pose* pose) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        World::Object& o = live_object(w, id, __func__);
-        require_pointer(pose, __func__, "pose");
-        const BodyState p = state_of(read_pose(pose, __func__, "pose"));
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        World::Object& o = live_object(w, id, fn);
+        require_pointer(pose, fn, "pose");
+        const BodyState p = state_of(read_pose(pose, fn, "pose"));
         o.pose = p;
         o.end = p;
         o.moving = false;
@@ -95,37 +99,41 @@ KAIROS_API int32_t kairos_world_set_pose(kairos_world* w, kairos_object_id id, c
 }
 
 KAIROS_API int32_t kairos_world_move(kairos_world* w, kairos_object_id id, const kairos_pose* end) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        World::Object& o = live_object(w, id, __func__);
-        require_pointer(end, __func__, "end");
-        o.end = state_of(read_pose(end, __func__, "end"));
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        World::Object& o = live_object(w, id, fn);
+        require_pointer(end, fn, "end");
+        o.end = state_of(read_pose(end, fn, "end"));
         o.moving = true;
     });
 }
 
 KAIROS_API int32_t kairos_world_step(kairos_world* w) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, __func__, "not implemented in this version");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
     });
 }
 
 KAIROS_API int32_t kairos_world_contacts(const kairos_world* w, const kairos_contact** out, size_t* count) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        require_pointer(out, __func__, "out");
-        require_pointer(count, __func__, "count");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        require_pointer(out, fn, "out");
+        require_pointer(count, fn, "count");
         *out = w->contacts.data();
         *count = w->contacts.size();
     });
 }
 
 KAIROS_API int32_t kairos_world_overlaps(const kairos_world* w, const kairos_object_id** pairs, size_t* count) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        require_pointer(pairs, __func__, "pairs");
-        require_pointer(count, __func__, "count");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        require_pointer(pairs, fn, "pairs");
+        require_pointer(count, fn, "count");
         *pairs = w->core.overlaps.data();
         *count = w->core.overlaps.size() / 2;
     });
@@ -138,11 +146,12 @@ KAIROS_API void kairos_step_stats_init(kairos_step_stats* s) {
 }
 
 KAIROS_API int32_t kairos_world_step_stats(const kairos_world* w, kairos_step_stats* out) {
-    return guarded(__func__, [&] {
-        require_pointer(w, __func__, "w");
-        require_pointer(out, __func__, "out");
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        require_pointer(out, fn, "out");
         if (out->struct_size < sizeof(uint32_t))
-            fail(KAIROS_ERROR_STRUCT_SIZE, __func__, "out->struct_size is %u; call kairos_step_stats_init", out->struct_size);
+            fail(KAIROS_ERROR_STRUCT_SIZE, fn, "out->struct_size is %u; call kairos_step_stats_init", out->struct_size);
         const StepCounters& c = w->core.counters;
         kairos_step_stats full;
         kairos_step_stats_init(&full);

@@ -63,6 +63,17 @@ TEST(Library, StatusNamesForEveryValue) {
     EXPECT_EQ(KAIROS_ERROR_LIMIT, -10);
 }
 
+TEST(Library, MessageStartsWithTheFunctionName) {
+    kairos_shape* s = kSentinel;
+    ASSERT_EQ(kairos_shape_cylinder(1, -3, &s), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(std::string(kairos_last_error()).rfind("kairos_shape_cylinder: half_height", 0), 0u) << kairos_last_error();
+    ASSERT_EQ(kairos_world_remove(nullptr, 1), KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_EQ(std::string(kairos_last_error()).rfind("kairos_world_remove: w", 0), 0u) << kairos_last_error();
+    const kairos_api* api = nullptr;
+    ASSERT_EQ(kairos_get_api(0, &api), KAIROS_ERROR_UNSUPPORTED_VERSION);
+    EXPECT_EQ(std::string(kairos_last_error()).rfind("kairos_get_api: abi_version 0", 0), 0u) << kairos_last_error();
+}
+
 TEST(Library, LastErrorIsPerThreadAndStartsEmpty) {
     kairos_shape* s = kSentinel;
     ASSERT_NE(kairos_shape_sphere(-1, &s), KAIROS_OK);
