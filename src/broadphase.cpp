@@ -1,0 +1,821 @@
+// Broad phase: space-time sweep and prune with queued swaps, the encapsulating sweep, brute force.
+//
+// Source: the talks' space-time sweep and prune (ALGORITHMS.md §5). Per axis a sorted array of
+// endpoints; over the step every endpoint moves linearly from p0 (t = 0) to p1 (t = 1). Two
+// adjacent endpoints L < R swap at the root of d(t) = (1 - t) d0 + t d1 with d0 = R.p0 - L.p0 and
+// d1 = R.p1 - L.p1, that is t = d0 / (d0 - d1). Whether they swap at all depends only on the sign
+// of d1, so the arrays end the step in exactly the order of the end positions.
+#include "broadphase.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace kairos {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool valid_box(const Aabb& b) {
+    for (int k = 0; k < 3; ++k) {
+        // Written so that NaN fails too.
+        if (!(std::isfinite(b.min[k]) && std::isfinite(b.max[k]) && b.min[k] <= b.max[k])) return false;
+    }
+    return true;
+}
+
+bool same_box(const Aabb& a, const Aabb& b) { return a.min == b.min && a.max == b.max; }
+
+Aabb union_box(const Aabb& a, const Aabb& b) { return {cwise_min(a.min, b.min), cwise_max(a.max, b.max)}; }
+
+uint64_t pair_key(uint32_t a, uint32_t b) {
+    if (a > b) std::swap(a, b);
+    return (uint64_t{a} << 32) | b;
+}
+
+// Set of pair keys: open addressing with linear probing and backward-shift deletion, so it never
+// holds tombstones and allocates only when it grows.
+class PairSet {
+public:
+    static constexpr uint64_t kEmpty = ~uint64_t{0};  // never a key: ids are below 2^31
+
+    std::size_t size() const { return size_; }
+
+    bool contains(uint64_t key) const {
+        if (slots_.empty()) return false;
+        for (std::size_t i = home(key);; i = (i + 1) & mask_) {
+            if (slots_[i] == key) return true;
+            if (slots_[i] == kEmpty) return false;
+        }
+    }
+
+    bool insert(uint64_t key) {
+        if (2 * (size_ + 1) > slots_.size()) grow();
+        std::size_t i = home(key);
+        for (; slots_[i] != kEmpty; i = (i + 1) & mask_) {
+            if (slots_[i] == key) return false;
+        }
+        slots_[i] = key;
+        ++size_;
+        return true;
+    }
+
+    bool erase(uint64_t key) {
+        if (slots_.empty()) return false;
+        std::size_t i = home(key);
+        for (; slots_[i] != key; i = (i + 1) & mask_) {
+            if (slots_[i] == kEmpty) return false;
+        }
+        // Shift back the following entries of the cluster whose home is not in (i, j].
+        for (std::size_t j = (i + 1) & mask_; slots_[j] != kEmpty; j = (j + 1) & mask_) {
+            const std::size_t k = home(slots_[j]);
+            const bool stays = i <= j ? (i < k && k <= j) : (i < k || k <= j);
+            if (stays) continue;
+            slots_[i] = slots_[j];
+            i = j;
+        }
+        slots_[i] = kEmpty;
+        --size_;
+        return true;
+    }
+
+    template <class F>
+    void for_each(F&& f) const {
+        for (uint64_t k : slots_) {
+            if (k != kEmpty) f(k);
+        }
+    }
+
+private:
+    std::size_t home(uint64_t key) const {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
+    }
+
+    void grow() {
+        std::vector<uint64_t> old;
+        old.swap(slots_);
+        const std::size_t cap = old.empty() ? 16 : 2 * old.size();
+        slots_.assign(cap, kEmpty);
+        mask_ = cap - 1;
+        shift_ = 64 - static_cast<unsigned>(std::countr_zero(cap));
+        size_ = 0;
+        for (uint64_t k : old) {
+            if (k != kEmpty) insert(k);
+        }
+    }
+
+    std::vector<uint64_t> slots_;
+    std::size_t size_ = 0;
+    std::size_t mask_ = 0;
+    unsigned shift_ = 63;
+};
+
+// Binary min-heap of event slots with decrease- and increase-key: pos_ maps a slot to its place
+// in the heap. Keys are (time, rank, slot), a total order, so the order in which events are
+// taken does not depend on the order in which they were queued.
+class EventHeap {
+public:
+    static constexpr uint32_t kNone = ~uint32_t{0};
+
+    // Only while empty.
+    void resize_slots(std::size_t n) {
+        pos_.assign(n, kNone);
+        time_.resize(n);
+        rank_.resize(n);
+        heap_.reserve(n);
+    }
+
+    bool empty() const { return heap_.empty(); }
+    std::size_t size() const { return heap_.size(); }
+    bool queued(uint32_t slot) const { return pos_[slot] != kNone; }
+    double time(uint32_t slot) const { return time_[slot]; }
+    uint8_t rank(uint32_t slot) const { return rank_[slot]; }
+
+    void push(uint32_t slot, double t, uint8_t rank) {
+        time_[slot] = t;
+        rank_[slot] = rank;
+        pos_[slot] = static_cast<uint32_t>(heap_.size());
+        heap_.push_back(slot);
+        sift_up(pos_[slot]);
+    }
+
+    void change(uint32_t slot, double t, uint8_t rank) {
+        const bool earlier = t < time_[slot] || (t == time_[slot] && rank < rank_[slot]);
+        time_[slot] = t;
+        rank_[slot] = rank;
+        if (earlier) {
+            sift_up(pos_[slot]);
+        } else {
+            sift_down(pos_[slot]);
+        }
+    }
+
+    void remove(uint32_t slot) {
+        const uint32_t i = pos_[slot];
+        pos_[slot] = kNone;
+        const uint32_t last = heap_.back();
+        heap_.pop_back();
+        if (last == slot) return;
+        heap_[i] = last;
+        pos_[last] = i;
+        sift_up(i);
+        sift_down(pos_[last]);
+    }
+
+    uint32_t pop() {
+        const uint32_t top = heap_.front();
+        remove(top);
+        return top;
+    }
+
+private:
+    bool less(uint32_t a, uint32_t b) const {
+        if (time_[a] != time_[b]) return time_[a] < time_[b];
+        if (rank_[a] != rank_[b]) return rank_[a] < rank_[b];
+        return a < b;
+    }
+
+    void place(uint32_t i, uint32_t slot) {
+        heap_[i] = slot;
+        pos_[slot] = i;
+    }
+
+    void sift_up(uint32_t i) {
+        const uint32_t slot = heap_[i];
+        while (i > 0) {
+            const uint32_t parent = (i - 1) / 2;
+            if (!less(slot, heap_[parent])) break;
+            place(i, heap_[parent]);
+            i = parent;
+        }
+        place(i, slot);
+    }
+
+    void sift_down(uint32_t i) {
+        const uint32_t slot = heap_[i];
+        const auto n = static_cast<uint32_t>(heap_.size());
+        for (;;) {
+            uint32_t child = 2 * i + 1;
+            if (child >= n) break;
+            if (child + 1 < n && less(heap_[child + 1], heap_[child])) ++child;
+            if (!less(heap_[child], slot)) break;
+            place(i, heap_[child]);
+            i = child;
+        }
+        place(i, slot);
+    }
+
+    std::vector<uint32_t> heap_;
+    std::vector<uint32_t> pos_;
+    std::vector<double> time_;
+    std::vector<uint8_t> rank_;
+};
+
+// Event ranks at equal times: overlaps start before same-kind swaps, which come before overlaps
+// end, so that boxes touching on all axes for one instant are seen overlapping at that instant.
+constexpr uint8_t kRankStart = 0;
+constexpr uint8_t kRankSame = 1;
+constexpr uint8_t kRankEnd = 2;
+
+// ---- Space-time sweep and prune --------------------------------------------------------------
+
+class SpacetimeSap final : public BroadPhase {
+public:
+    SpacetimeSap() : BroadPhase(BroadPhaseKind::SpacetimeSap) {}
+
+    std::string check_invariants() const override;
+
+private:
+    // One interval endpoint: its coordinate at the start and at the end of the step (equal between
+    // steps) and tag = owner id << 1 | 1 for a max ("]"), 0 for a min ("[").
+    struct Endpoint {
+        double p0;
+        double p1;
+        uint32_t tag;
+    };
+    static uint32_t owner(const Endpoint& e) { return e.tag >> 1; }
+    static bool is_max(const Endpoint& e) { return (e.tag & 1) != 0; }
+    // The order between steps: by position, then "[" before "]", so touching intervals overlap.
+    static bool before(const Endpoint& a, const Endpoint& b) {
+        return a.p0 < b.p0 || (a.p0 == b.p0 && (a.tag & 1) < (b.tag & 1));
+    }
+    // Sort key for bulk insertion: the ordered bits of the position, then the flag, then the owner.
+    struct SortItem {
+        uint64_t key;
+        uint32_t flag_owner;  // is_max << 31 | owner
+        bool operator<(const SortItem& o) const {
+            return key != o.key ? key < o.key : flag_owner < o.flag_owner;
+        }
+    };
+
+    void on_flush() override;
+    void on_teleport(uint32_t id, const Aabb& old_box) override;
+    void on_step() override;
+
+    uint32_t& ep(uint32_t id, int axis, bool max) { return ep_[id][static_cast<std::size_t>(2 * axis + (max ? 1 : 0))]; }
+    uint32_t ep(uint32_t id, int axis, bool max) const { return ep_[id][static_cast<std::size_t>(2 * axis + (max ? 1 : 0))]; }
+    bool overlap_on_axis(uint32_t a, uint32_t b, int axis) const {
+        return ep(a, axis, false) < ep(b, axis, true) && ep(b, axis, false) < ep(a, axis, true);
+    }
+    bool overlap_on_other_axes(uint32_t a, uint32_t b, int axis) const {
+        return overlap_on_axis(a, b, (axis + 1) % 3) && overlap_on_axis(a, b, (axis + 2) % 3);
+    }
+    bool both_static(uint32_t a, uint32_t b) const { return records_[a].is_static && records_[b].is_static; }
+
+    void swap_at(int axis, uint32_t i, double t, bool report);
+    void update_slot(int axis, uint32_t i, double t_now);
+    void bubble(int axis, uint32_t idx);
+    void rebuild_indices(int axis, std::size_t from);
+
+    std::array<std::vector<Endpoint>, 3> axes_;
+    std::vector<std::array<uint32_t, 6>> ep_;  // by id: index of [min, max] on x, y, z
+    PairSet overlaps_;                         // pairs overlapping now, not both static
+    EventHeap heap_;
+    uint32_t stride_ = 0;  // slot id = axis * stride_ + left index; stride_ = 2 * objects
+    // Scratch buffers kept between flushes.
+    std::vector<SortItem> sort_items_;
+    std::vector<Endpoint> merged_;
+    std::vector<uint64_t> doomed_;
+    std::vector<uint32_t> active_all_, active_new_, active_pos_;
+};
+
+void SpacetimeSap::rebuild_indices(int axis, std::size_t from) {
+    auto& arr = axes_[static_cast<std::size_t>(axis)];
+    for (std::size_t i = from; i < arr.size(); ++i) ep(owner(arr[i]), axis, is_max(arr[i])) = static_cast<uint32_t>(i);
+}
+
+void SpacetimeSap::on_flush() {
+    if (ep_.size() < records_.size()) ep_.resize(records_.size());
+
+    if (!pending_removes_.empty()) {
+        auto removed = [&](uint32_t id) { return records_[id].state == State::PendingRemove; };
+        doomed_.clear();
+        overlaps_.for_each([&](uint64_t k) {
+            if (removed(static_cast<uint32_t>(k >> 32)) || removed(static_cast<uint32_t>(k))) doomed_.push_back(k);
+        });
+        for (uint64_t k : doomed_) overlaps_.erase(k);
+        for (int axis = 0; axis < 3; ++axis) {
+            auto& arr = axes_[static_cast<std::size_t>(axis)];
+            std::size_t w = 0;
+            for (std::size_t r = 0; r < arr.size(); ++r) {
+                if (removed(owner(arr[r]))) continue;
+                arr[w] = arr[r];
+                ep(owner(arr[w]), axis, is_max(arr[w])) = static_cast<uint32_t>(w);
+                ++w;
+            }
+            arr.resize(w);
+        }
+    }
+
+    if (!pending_adds_.empty()) {
+        // Bulk insertion: sort the new endpoints, then merge them into each axis in one pass.
+        for (int axis = 0; axis < 3; ++axis) {
+            sort_items_.clear();
+            for (uint32_t id : pending_adds_) {
+                const Aabb& b = records_[id].box;
+                sort_items_.push_back({ordered_key(b.min[axis]), id});
+                sort_items_.push_back({ordered_key(b.max[axis]), id | (1u << 31)});
+            }
+            std::sort(sort_items_.begin(), sort_items_.end());
+            auto& arr = axes_[static_cast<std::size_t>(axis)];
+            merged_.clear();
+            merged_.reserve(arr.size() + sort_items_.size());
+            std::size_t r = 0;
+            for (const SortItem& s : sort_items_) {
+                const uint32_t id = s.flag_owner & ~(1u << 31);
+                const bool mx = (s.flag_owner >> 31) != 0;
+                const Aabb& b = records_[id].box;
+                const double p = mx ? b.max[axis] : b.min[axis];
+                const Endpoint e{p, p, (id << 1) | (mx ? 1u : 0u)};
+                while (r < arr.size() && !before(e, arr[r])) merged_.push_back(arr[r++]);
+                merged_.push_back(e);
+            }
+            while (r < arr.size()) merged_.push_back(arr[r++]);
+            arr.swap(merged_);
+            rebuild_indices(axis, 0);
+        }
+
+        // New overlaps: one sweep along x with the objects whose x interval is open; a pair is
+        // tested only if one of the two is new, by index on y and z.
+        auto is_new = [&](uint32_t id) { return records_[id].state == State::PendingAdd; };
+        if (active_pos_.size() < records_.size()) active_pos_.resize(records_.size());
+        active_all_.clear();
+        active_new_.clear();
+        auto drop = [&](std::vector<uint32_t>& list, uint32_t id) {
+            const uint32_t i = active_pos_[id];
+            list[i] = list.back();
+            active_pos_[list[i]] = i;
+            list.pop_back();
+        };
+        for (const Endpoint& e : axes_[0]) {
+            const uint32_t id = owner(e);
+            const bool fresh = is_new(id);
+            if (is_max(e)) {
+                drop(fresh ? active_new_ : active_all_, id);
+                continue;
+            }
+            for (uint32_t other : active_new_) {
+                if (!both_static(id, other) && overlap_on_other_axes(id, other, 0)) overlaps_.insert(pair_key(id, other));
+            }
+            if (fresh) {
+                for (uint32_t other : active_all_) {
+                    if (!both_static(id, other) && overlap_on_other_axes(id, other, 0)) overlaps_.insert(pair_key(id, other));
+                }
+            }
+            auto& list = fresh ? active_new_ : active_all_;
+            active_pos_[id] = static_cast<uint32_t>(list.size());
+            list.push_back(id);
+        }
+    }
+
+    stride_ = static_cast<uint32_t>(axes_[0].size());
+    heap_.resize_slots(3 * static_cast<std::size_t>(stride_));
+}
+
+// Swaps the endpoints at i and i + 1 of an axis and keeps the overlap set: "][" -> "[]" starts an
+// overlap on this axis, "[]" -> "][" ends one; the pair changes only if the others overlap too.
+void SpacetimeSap::swap_at(int axis, uint32_t i, double t, bool report) {
+    auto& arr = axes_[static_cast<std::size_t>(axis)];
+    const Endpoint left = arr[i];
+    const Endpoint right = arr[i + 1];
+    arr[i] = right;
+    arr[i + 1] = left;
+    const uint32_t a = owner(left), b = owner(right);
+    ep(a, axis, is_max(left)) = i + 1;
+    ep(b, axis, is_max(right)) = i;
+    if (is_max(left) == is_max(right)) return;
+    if (both_static(a, b) || !overlap_on_other_axes(a, b, axis)) return;
+    if (is_max(left)) {
+        overlaps_.insert(pair_key(a, b));
+        if (report) pairs_.push_back({std::min(a, b), std::max(a, b), t});
+    } else {
+        overlaps_.erase(pair_key(a, b));
+    }
+}
+
+// (Re)computes the event of the adjacent endpoints at i and i + 1 of an axis, at time t_now.
+void SpacetimeSap::update_slot(int axis, uint32_t i, double t_now) {
+    const auto& arr = axes_[static_cast<std::size_t>(axis)];
+    if (i + 1 >= arr.size()) return;
+    const uint32_t slot = static_cast<uint32_t>(axis) * stride_ + i;
+    const Endpoint& l = arr[i];
+    const Endpoint& r = arr[i + 1];
+    const bool start = is_max(l) && !is_max(r);
+    const double d1 = r.p1 - l.p1;
+    // "][" must swap once the positions are equal ("[" sorts first); any other pair only once
+    // the right one is strictly left of the left one. The comparisons are false for NaN.
+    const bool swaps = start ? d1 <= 0 : d1 < 0;
+    if (!swaps) {
+        if (heap_.queued(slot)) {
+            heap_.remove(slot);
+            ++counters_.heap_removes;
+        }
+        return;
+    }
+    const double d0 = r.p0 - l.p0;
+    // d0 > 0 >= d1 gives d0 - d1 >= d0 > 0 after rounding, so t lies in (0, 1]. An order that
+    // rounding left inconsistent (d0 <= 0) swaps at once; never before the current time.
+    double t = d0 > 0 ? d0 / (d0 - d1) : t_now;
+    t = std::max(t, t_now);
+    const uint8_t rank = start ? kRankStart : (is_max(l) == is_max(r) ? kRankSame : kRankEnd);
+    if (heap_.queued(slot)) {
+        if (heap_.time(slot) != t || heap_.rank(slot) != rank) {
+            heap_.change(slot, t, rank);
+            ++counters_.heap_updates;
+        }
+    } else {
+        heap_.push(slot, t, rank);
+        ++counters_.heap_pushes;
+    }
+}
+
+void SpacetimeSap::on_step() {
+    overlaps_.for_each([&](uint64_t k) {
+        pairs_.push_back({static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(k), 0.0});
+    });
+    if (moving_.empty()) return;
+
+    for (uint32_t id : moving_) {
+        const Aabb& e = records_[id].box_end;
+        for (int axis = 0; axis < 3; ++axis) {
+            auto& arr = axes_[static_cast<std::size_t>(axis)];
+            arr[ep(id, axis, false)].p1 = e.min[axis];
+            arr[ep(id, axis, true)].p1 = e.max[axis];
+        }
+    }
+    // Only slots next to a moving endpoint can hold an event: static objects cost nothing here.
+    for (uint32_t id : moving_) {
+        for (int axis = 0; axis < 3; ++axis) {
+            for (bool mx : {false, true}) {
+                const uint32_t i = ep(id, axis, mx);
+                if (i > 0) update_slot(axis, i - 1, 0.0);
+                update_slot(axis, i, 0.0);
+            }
+        }
+    }
+    while (!heap_.empty()) {
+        const uint32_t slot = heap_.pop();
+        ++counters_.heap_pops;
+        const double t = heap_.time(slot);
+        const int axis = static_cast<int>(slot / stride_);
+        const uint32_t i = slot % stride_;
+        swap_at(axis, i, t, true);
+        ++counters_.swaps;
+        if (i > 0) update_slot(axis, i - 1, t);
+        update_slot(axis, i, t);
+        update_slot(axis, i + 1, t);
+    }
+    for (uint32_t id : moving_) {
+        for (int axis = 0; axis < 3; ++axis) {
+            auto& arr = axes_[static_cast<std::size_t>(axis)];
+            for (bool mx : {false, true}) {
+                Endpoint& e = arr[ep(id, axis, mx)];
+                e.p0 = e.p1;
+            }
+        }
+    }
+}
+
+// Moves the endpoint at idx (already holding its new position) to its place by adjacent swaps.
+void SpacetimeSap::bubble(int axis, uint32_t idx) {
+    auto& arr = axes_[static_cast<std::size_t>(axis)];
+    while (idx > 0 && before(arr[idx], arr[idx - 1])) {
+        swap_at(axis, idx - 1, 0.0, false);
+        ++teleport_swaps_since_step_;
+        --idx;
+    }
+    while (idx + 1 < arr.size() && before(arr[idx + 1], arr[idx])) {
+        swap_at(axis, idx, 0.0, false);
+        ++teleport_swaps_since_step_;
+        ++idx;
+    }
+}
+
+void SpacetimeSap::on_teleport(uint32_t id, const Aabb& old_box) {
+    const Aabb& b = records_[id].box;
+    for (int axis = 0; axis < 3; ++axis) {
+        auto& arr = axes_[static_cast<std::size_t>(axis)];
+        // Move first the endpoint that cannot cross its partner on the way: the max if it grows.
+        const bool max_first = b.max[axis] >= old_box.max[axis];
+        for (bool mx : {max_first, !max_first}) {
+            Endpoint& e = arr[ep(id, axis, mx)];
+            e.p0 = e.p1 = mx ? b.max[axis] : b.min[axis];
+            bubble(axis, ep(id, axis, mx));
+        }
+    }
+}
+
+std::string SpacetimeSap::check_invariants() const {
+    std::string base = BroadPhase::check_invariants();
+    if (!base.empty()) return base;
+    std::ostringstream why;
+    std::vector<uint32_t> present;
+    collect_present(present);
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto& arr = axes_[static_cast<std::size_t>(axis)];
+        if (arr.size() != 2 * present.size()) {
+            why << "axis " << axis << " holds " << arr.size() << " endpoints for " << present.size() << " objects";
+            return why.str();
+        }
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            const Endpoint& e = arr[i];
+            const uint32_t id = owner(e);
+            if (id >= records_.size() || records_[id].state == State::Absent || records_[id].state == State::PendingAdd) {
+                why << "axis " << axis << " index " << i << ": endpoint of absent object " << id;
+                return why.str();
+            }
+            if (ep(id, axis, is_max(e)) != i) {
+                why << "axis " << axis << " index " << i << ": object " << id << " says " << ep(id, axis, is_max(e));
+                return why.str();
+            }
+            const Aabb& b = records_[id].box;
+            const double want = is_max(e) ? b.max[axis] : b.min[axis];
+            if (e.p0 != want || e.p1 != want) {
+                why << "axis " << axis << " index " << i << ": endpoint at " << e.p0 << "/" << e.p1 << ", box says " << want;
+                return why.str();
+            }
+            if (i > 0 && before(e, arr[i - 1])) {
+                why << "axis " << axis << " not sorted at index " << i;
+                return why.str();
+            }
+        }
+    }
+    if (!heap_.empty()) return "event heap not empty between steps";
+    std::size_t expected = 0;
+    for (std::size_t x = 0; x < present.size(); ++x) {
+        for (std::size_t y = x + 1; y < present.size(); ++y) {
+            const uint32_t a = present[x], b = present[y];
+            if (both_static(a, b)) continue;
+            const bool by_box = boxes_overlap(records_[a].box, records_[b].box);
+            const bool by_index = overlap_on_axis(a, b, 0) && overlap_on_axis(a, b, 1) && overlap_on_axis(a, b, 2);
+            if (by_box != by_index) {
+                why << "pair " << a << "," << b << ": boxes overlap " << by_box << ", indices say " << by_index;
+                return why.str();
+            }
+            if (by_box != overlaps_.contains(pair_key(a, b))) {
+                why << "pair " << a << "," << b << ": boxes overlap " << by_box << ", overlap set says " << !by_box;
+                return why.str();
+            }
+            expected += by_box ? 1 : 0;
+        }
+    }
+    if (expected != overlaps_.size()) {
+        why << "overlap set holds " << overlaps_.size() << " pairs, brute force finds " << expected;
+        return why.str();
+    }
+    return {};
+}
+
+// ---- References ------------------------------------------------------------------------------
+
+// Objects present, as a sorted list of ids kept by each flush.
+class ListedBroadPhase : public BroadPhase {
+protected:
+    explicit ListedBroadPhase(BroadPhaseKind kind) : BroadPhase(kind) {}
+    void on_flush() override {
+        std::size_t w = 0;
+        for (uint32_t id : ids_) {
+            if (records_[id].state != State::PendingRemove) ids_[w++] = id;
+        }
+        ids_.resize(w);
+        ids_.insert(ids_.end(), pending_adds_.begin(), pending_adds_.end());
+        std::sort(ids_.begin(), ids_.end());
+    }
+    void on_teleport(uint32_t, const Aabb&) override {}
+    std::vector<uint32_t> ids_;
+};
+
+class BruteForceBroadPhase final : public ListedBroadPhase {
+public:
+    BruteForceBroadPhase() : ListedBroadPhase(BroadPhaseKind::BruteForce) {}
+
+private:
+    void on_step() override {
+        for (std::size_t x = 0; x < ids_.size(); ++x) {
+            const Record& ra = records_[ids_[x]];
+            const SweptAabb sa{ra.box, ra.box_end};
+            for (std::size_t y = x + 1; y < ids_.size(); ++y) {
+                const Record& rb = records_[ids_[y]];
+                if (ra.is_static && rb.is_static) continue;
+                double t = 0;
+                if (first_overlap_time(sa, SweptAabb{rb.box, rb.box_end}, &t)) pairs_.push_back({ids_[x], ids_[y], t});
+            }
+        }
+    }
+};
+
+// The talks' simple solution: sweep and prune along x on the boxes swept over the whole step.
+class EncapsulatingSap final : public ListedBroadPhase {
+public:
+    EncapsulatingSap() : ListedBroadPhase(BroadPhaseKind::EncapsulatingSap) {}
+
+private:
+    void on_step() override {
+        swept_.resize(records_.size());
+        for (uint32_t id : ids_) swept_[id] = union_box(records_[id].box, records_[id].box_end);
+        order_ = ids_;
+        std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
+            return swept_[a].min.x != swept_[b].min.x ? swept_[a].min.x < swept_[b].min.x : a < b;
+        });
+        active_.clear();
+        for (uint32_t id : order_) {
+            const Aabb& box = swept_[id];
+            std::size_t w = 0;
+            for (uint32_t other : active_) {
+                const Aabb& ob = swept_[other];
+                if (ob.max.x < box.min.x) continue;  // closed off for good: the mins only grow
+                active_[w++] = other;
+                if (records_[id].is_static && records_[other].is_static) continue;
+                if (!boxes_overlap(box, ob)) continue;
+                double t = kInf;
+                const SweptAabb sa{records_[id].box, records_[id].box_end};
+                const SweptAabb sb{records_[other].box, records_[other].box_end};
+                if (!first_overlap_time(sa, sb, &t)) t = kInf;
+                pairs_.push_back({std::min(id, other), std::max(id, other), t});
+            }
+            active_.resize(w);
+            active_.push_back(id);
+        }
+    }
+    std::vector<Aabb> swept_;
+    std::vector<uint32_t> order_, active_;
+};
+
+}  // namespace
+
+// ---- Free functions ----------------------------------------------------------------------------
+
+bool first_overlap_time(const SweptAabb& a, const SweptAabb& b, double* out_t) {
+    double lo = 0, hi = 1;
+    // Overlap needs s(t) <= 0 for both separations s of an axis; s is linear, so each condition
+    // holds on a half-line of t. Its end is s0 / (s0 - s1), the swap time of the sweep.
+    auto condition = [&](double s0, double s1) {
+        if (s0 <= 0) {
+            if (s1 > 0) hi = std::min(hi, s0 / (s0 - s1));
+        } else if (s1 <= 0) {
+            lo = std::max(lo, s0 / (s0 - s1));
+        } else {
+            hi = -1;  // separated for the whole step
+        }
+    };
+    for (int k = 0; k < 3; ++k) {
+        condition(a.start.min[k] - b.start.max[k], a.end.min[k] - b.end.max[k]);
+        condition(b.start.min[k] - a.start.max[k], b.end.min[k] - a.end.max[k]);
+    }
+    if (!(lo <= hi)) return false;
+    *out_t = lo;
+    return true;
+}
+
+bool boxes_overlap(const Aabb& a, const Aabb& b) {
+    for (int k = 0; k < 3; ++k) {
+        if (a.min[k] > b.max[k] || b.min[k] > a.max[k]) return false;
+    }
+    return true;
+}
+
+uint64_t ordered_key(double x) {
+    const auto u = std::bit_cast<uint64_t>(x + 0.0);  // + 0.0 turns -0.0 into +0.0
+    return (u >> 63) != 0 ? ~u : u | (uint64_t{1} << 63);
+}
+
+// ---- BroadPhase --------------------------------------------------------------------------------
+
+std::unique_ptr<BroadPhase> BroadPhase::create(BroadPhaseKind kind) {
+    switch (kind) {
+        case BroadPhaseKind::SpacetimeSap: return std::make_unique<SpacetimeSap>();
+        case BroadPhaseKind::EncapsulatingSap: return std::make_unique<EncapsulatingSap>();
+        case BroadPhaseKind::BruteForce: return std::make_unique<BruteForceBroadPhase>();
+    }
+    return nullptr;
+}
+
+BroadPhase::~BroadPhase() = default;
+
+bool BroadPhase::contains(uint32_t id) const {
+    return id < records_.size() && (records_[id].state == State::Live || records_[id].state == State::PendingAdd);
+}
+
+const Aabb* BroadPhase::box(uint32_t id) const { return contains(id) ? &records_[id].box : nullptr; }
+
+bool BroadPhase::add(uint32_t id, const Aabb& box, bool is_static) {
+    if (id > kMaxId || !valid_box(box) || contains(id)) return false;
+    if (id >= records_.size()) records_.resize(static_cast<std::size_t>(id) + 1);
+    if (records_[id].state == State::PendingRemove) flush();  // the old object must leave first
+    Record& r = records_[id];
+    r.box = box;
+    r.box_end = box;
+    r.state = State::PendingAdd;
+    r.is_static = is_static;
+    r.moving = false;
+    pending_adds_.push_back(id);
+    ++live_count_;
+    return true;
+}
+
+bool BroadPhase::remove(uint32_t id) {
+    if (!contains(id)) return false;
+    Record& r = records_[id];
+    r.state = r.state == State::PendingAdd ? State::Absent : State::PendingRemove;
+    if (r.state == State::PendingRemove) pending_removes_.push_back(id);
+    r.moving = false;
+    --live_count_;
+    return true;
+}
+
+bool BroadPhase::teleport(uint32_t id, const Aabb& box) {
+    if (!contains(id) || !valid_box(box)) return false;
+    Record& r = records_[id];
+    const Aabb old = r.box;
+    r.box = box;
+    r.box_end = box;
+    if (r.state == State::Live) on_teleport(id, old);
+    return true;
+}
+
+bool BroadPhase::move(uint32_t id, const Aabb& box_end) {
+    if (!contains(id) || !valid_box(box_end) || records_[id].is_static) return false;
+    Record& r = records_[id];
+    r.box_end = box_end;
+    if (!r.moving) {
+        r.moving = true;
+        moving_.push_back(id);
+    }
+    return true;
+}
+
+void BroadPhase::flush() {
+    // The lists may hold ids whose state changed since they were queued.
+    std::sort(pending_adds_.begin(), pending_adds_.end());
+    pending_adds_.erase(std::unique(pending_adds_.begin(), pending_adds_.end()), pending_adds_.end());
+    std::erase_if(pending_adds_, [&](uint32_t id) { return records_[id].state != State::PendingAdd; });
+    std::sort(pending_removes_.begin(), pending_removes_.end());
+    if (pending_adds_.empty() && pending_removes_.empty()) return;
+    on_flush();
+    for (uint32_t id : pending_removes_) records_[id] = Record{};
+    for (uint32_t id : pending_adds_) records_[id].state = State::Live;
+    pending_adds_.clear();
+    pending_removes_.clear();
+}
+
+const std::vector<BroadPhasePair>& BroadPhase::step() {
+    flush();
+    counters_ = BroadPhaseCounters{};
+    counters_.teleport_swaps = teleport_swaps_since_step_;
+    teleport_swaps_since_step_ = 0;
+    // Keep each moved object once, and only if it moves at all.
+    std::size_t w = 0;
+    for (uint32_t id : moving_) {
+        Record& r = records_[id];
+        if (r.state != State::Live || !r.moving) continue;
+        r.moving = false;
+        if (!same_box(r.box, r.box_end)) moving_[w++] = id;
+    }
+    moving_.resize(w);
+    counters_.moving_objects = w;
+
+    pairs_.clear();
+    on_step();
+    for (uint32_t id : moving_) records_[id].box = records_[id].box_end;
+    moving_.clear();
+
+    std::sort(pairs_.begin(), pairs_.end(), [](const BroadPhasePair& p, const BroadPhasePair& q) {
+        if (p.a != q.a) return p.a < q.a;
+        if (p.b != q.b) return p.b < q.b;
+        return p.t_first < q.t_first;
+    });
+    // A pair whose overlap ends and starts again within the step was reported twice: keep the first.
+    pairs_.erase(std::unique(pairs_.begin(), pairs_.end(),
+                             [](const BroadPhasePair& p, const BroadPhasePair& q) { return p.a == q.a && p.b == q.b; }),
+                 pairs_.end());
+    counters_.pairs = pairs_.size();
+    for (const BroadPhasePair& p : pairs_) counters_.false_positives += std::isinf(p.t_first) ? 1 : 0;
+    return pairs_;
+}
+
+void BroadPhase::collect_present(std::vector<uint32_t>& out) const {
+    out.clear();
+    for (uint32_t id = 0; id < records_.size(); ++id) {
+        if (records_[id].state == State::Live || records_[id].state == State::PendingRemove) out.push_back(id);
+    }
+}
+
+std::string BroadPhase::check_invariants() const {
+    std::size_t live = 0;
+    for (uint32_t id = 0; id < records_.size(); ++id) {
+        const Record& r = records_[id];
+        if (r.state == State::Live || r.state == State::PendingAdd) {
+            ++live;
+            if (!valid_box(r.box) || !valid_box(r.box_end)) return "object " + std::to_string(id) + " has an invalid box";
+            if (r.is_static && !same_box(r.box, r.box_end)) return "static object " + std::to_string(id) + " moves";
+        }
+    }
+    if (live != live_count_) return "live count " + std::to_string(live_count_) + ", records say " + std::to_string(live);
+    return {};
+}
+
+}  // namespace kairos

@@ -1,0 +1,151 @@
+// Broad phase over one step: pairs of axis-aligned boxes that overlap at some moment of the step.
+//
+// Source: the talks' "space-time sweep and prune with queued swaps" (ALGORITHMS.md §5). Each
+// object has a box at the start (t = 0) and at the end (t = 1) of the step; every box coordinate
+// moves linearly in t in between. A pair is reported with the first t in [0, 1] at which its
+// boxes overlap on all three axes at once (closed boxes: touching counts as overlapping).
+// Independent of shapes and of the C API: objects are plain uint32 ids chosen by the caller.
+//
+// Thread safety: none; one broad phase is used by one thread at a time.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "math.hpp"
+
+namespace kairos {
+
+// Closed axis-aligned box, world frame; min <= max on every axis, all finite.
+struct Aabb {
+    Vec3 min;
+    Vec3 max;
+};
+
+// One object over one step: its box at t = 0 and at t = 1 (each coordinate linear in between).
+struct SweptAabb {
+    Aabb start;
+    Aabb end;
+};
+
+// A reported pair: a < b (ids), and the first moment of the step in [0, 1] at which the boxes
+// overlap on all three axes. The encapsulating variant also reports pairs whose boxes never
+// overlap at one moment; their `t_first` is +infinity.
+struct BroadPhasePair {
+    uint32_t a = 0;
+    uint32_t b = 0;
+    double t_first = 0;
+};
+
+enum class BroadPhaseKind {
+    SpacetimeSap,      // sorted endpoints swept through time, swaps queued in an indexed heap
+    EncapsulatingSap,  // plain sweep and prune on the boxes swept over the whole step
+    BruteForce,        // exact 4D box overlap of every pair, O(n^2): the reference
+};
+
+// Work done by one step (and, for teleport_swaps, by the teleports since the previous step).
+struct BroadPhaseCounters {
+    uint64_t pairs = 0;            // pairs reported by the step (false positives included)
+    uint64_t false_positives = 0;  // reported pairs whose boxes never overlap at one moment
+    uint64_t swaps = 0;            // adjacent endpoint swaps performed by the sweep
+    uint64_t teleport_swaps = 0;   // swaps done by teleports since the previous step
+    uint64_t heap_pushes = 0;
+    uint64_t heap_pops = 0;        // events taken from the top of the heap
+    uint64_t heap_updates = 0;     // key changes of a queued event (decrease or increase)
+    uint64_t heap_removes = 0;     // queued events cancelled before their time
+    uint64_t moving_objects = 0;   // objects given an end box different from their start box
+};
+
+// The first moment in [0, 1] at which two swept boxes overlap on all three axes; false if they
+// never do. Exact for linear coordinates up to one rounding of the crossing time
+// `s0 / (s0 - s1)` of each separation s = (min of one box) - (max of the other); the space-time
+// sweep computes its swap times with the same expression, so both agree on ties.
+bool first_overlap_time(const SweptAabb& a, const SweptAabb& b, double* out_t);
+
+// True if two boxes overlap (closed) on all three axes.
+bool boxes_overlap(const Aabb& a, const Aabb& b);
+
+// Order-preserving map of a double onto an unsigned integer: x < y iff key(x) < key(y), and
+// -0.0 and +0.0 share one key. The sign is handled by flipping: negative values get all bits
+// inverted, non-negative ones get the top bit set. NaN is not allowed.
+uint64_t ordered_key(double x);
+
+// A broad phase that persists between steps. Between steps: add, remove, teleport (a new box
+// without sweeping). For the coming step: move (the box at the end of the step); objects not
+// moved stay where they are. step() reports the pairs and moves every object to its end box.
+// Pairs of two static objects are never reported. Ids are caller-chosen indices < 2^31.
+class BroadPhase {
+public:
+    static std::unique_ptr<BroadPhase> create(BroadPhaseKind kind);
+    virtual ~BroadPhase();
+    BroadPhase(const BroadPhase&) = delete;
+    BroadPhase& operator=(const BroadPhase&) = delete;
+
+    BroadPhaseKind kind() const { return kind_; }
+
+    // Each returns false, changing nothing, on an id out of range or already used (add), an id
+    // not present (the others), a box with NaN, infinity or min > max, or a move of a static
+    // object. Adds are inserted in bulk (one sort) at the next step or flush().
+    bool add(uint32_t id, const Aabb& box, bool is_static);
+    bool remove(uint32_t id);
+    // Sets the box at once, with no sweep between the old and the new one; cancels a move.
+    bool teleport(uint32_t id, const Aabb& box);
+    // The box at the end of the coming step (t = 1).
+    bool move(uint32_t id, const Aabb& box_end);
+
+    // Sweeps the step and returns its pairs sorted by (a, b), each once. The buffer is owned by
+    // the broad phase and valid until the next call of a non-const member.
+    const std::vector<BroadPhasePair>& step();
+    // Performs pending adds and removes now (step() does it anyway).
+    void flush();
+
+    const BroadPhaseCounters& counters() const { return counters_; }
+    bool contains(uint32_t id) const;
+    std::size_t size() const { return live_count_; }
+    // The current box (start of the coming step); nullptr for an unknown id.
+    const Aabb* box(uint32_t id) const;
+
+    // Debug check of the internal structure against brute force at the current moment; the
+    // empty string if it holds, otherwise a description of the first fault. O(n^2).
+    virtual std::string check_invariants() const;
+
+    static constexpr uint32_t kMaxId = (1u << 31) - 1;
+
+protected:
+    explicit BroadPhase(BroadPhaseKind kind) : kind_(kind) {}
+
+    enum class State : uint8_t { Absent, PendingAdd, Live, PendingRemove };
+    struct Record {
+        Aabb box;      // at the start of the coming step
+        Aabb box_end;  // at its end; equals box unless moved
+        State state = State::Absent;
+        bool is_static = false;
+        bool moving = false;  // listed in moving_ for the coming step
+    };
+
+    // Hooks of the implementations. on_flush inserts the ids in pending_adds_ and deletes the ids
+    // in pending_removes_ (both sorted, disjoint); the base updates the records afterwards.
+    virtual void on_flush() = 0;
+    virtual void on_teleport(uint32_t id, const Aabb& old_box) = 0;
+    // Fills pairs_ (any order, duplicates allowed: the base keeps the earliest) and the
+    // counters; records still hold the start boxes and moving_ the moved ids (deduplicated).
+    virtual void on_step() = 0;
+
+    // Objects present in the structure, by id: Live or PendingRemove. Brute force over them.
+    void collect_present(std::vector<uint32_t>& out) const;
+
+    BroadPhaseKind kind_;
+    std::vector<Record> records_;
+    std::vector<uint32_t> pending_adds_;
+    std::vector<uint32_t> pending_removes_;
+    std::vector<uint32_t> moving_;
+    std::vector<BroadPhasePair> pairs_;
+    BroadPhaseCounters counters_;
+    uint64_t teleport_swaps_since_step_ = 0;
+    std::size_t live_count_ = 0;
+};
+
+}  // namespace kairos
