@@ -1,11 +1,523 @@
-// Convex hull construction and hull support (placeholder until the hull is written).
+// Convex hull construction (quickhull on exact orientation signs) and the hull's support mapping.
+//
+// Construction follows Barber, Dobkin and Huhdanpaa, "The Quickhull Algorithm for Convex Hulls"
+// (ACM TOMS 22(4), 1996): start from a tetrahedron of extreme points, keep for every facet the
+// points strictly above it (its conflict list), repeatedly add the farthest point of a facet,
+// delete the facets it sees, join it to their horizon and hand the orphaned points to the new
+// facets. Points left on no conflict list are inside or on the hull.
+//
+// Robustness: every above/below decision is the exact sign of the orientation determinant of
+// the (power-of-two rescaled) input doubles: a floating-point filter with a forward error bound
+// (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
+// Predicates", 1997, bound for orient3d) and, when the filter cannot decide, an exact evaluation
+// with floating-point expansions. The result is therefore the exact hull of the given doubles.
+// Facets are triangles; coplanar neighbours may remain. A point exactly on a face or an edge is
+// not a vertex: after construction a vertex is kept only if the facets around it span at least
+// three distinct planes (a point in the relative interior of a facet of a polytope lies in one
+// plane of it, one in an edge's interior in two); when some are not, the hull is rebuilt from
+// the true vertices alone, which changes neither the solid nor the answer.
+//
+// Degeneracy (the only place with a tolerance): the set is Collinear when every point lies within
+// kFlatTolerance * extent of the line through the two extreme points along the widest axis, and
+// Coplanar when every point lies within kFlatTolerance * extent of the plane through that line
+// and the point farthest from it, where extent is the widest side of the bounding box.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <vector>
+
 #include "shape.hpp"
+
 namespace kairos {
+
 Vec3 ConvexHullShape::support(Vec3 d) const {
-    size_t best = 0;
-    for (size_t i = 1; i < vertices.size(); ++i)
-        if (dot(d, vertices[i]) > dot(d, vertices[best])) best = i;
-    return vertices.empty() ? Vec3{} : vertices[best];
+    if (vertices.empty()) return {};
+    // Comparisons are strict and NaN-false: ties and NaN keep the earlier vertex.
+    if (neighbor_offsets.empty()) {
+        size_t best = 0;
+        double best_score = dot(d, vertices[0]);
+        for (size_t i = 1; i < vertices.size(); ++i) {
+            const double score = dot(d, vertices[i]);
+            if (score > best_score) {
+                best_score = score;
+                best = i;
+            }
+        }
+        return vertices[best];
+    }
+    // Steepest ascent over the edge graph: on a convex polytope a vertex with no better
+    // neighbour maximises the linear function d.x globally. Scores only increase, so it stops.
+    uint32_t current = 0;
+    double best_score = dot(d, vertices[0]);
+    for (;;) {
+        uint32_t next = current;
+        for (uint32_t k = neighbor_offsets[current]; k < neighbor_offsets[current + 1]; ++k) {
+            const uint32_t n = neighbors[k];
+            const double score = dot(d, vertices[n]);
+            if (score > best_score) {
+                best_score = score;
+                next = n;
+            }
+        }
+        if (next == current) return vertices[current];
+        current = next;
+    }
 }
-HullStatus make_convex_hull(const Vec3*, size_t, ConvexHullShape**) { return HullStatus::TooFewPoints; }
+
+namespace {
+
+// Relative tolerance of the Collinear / Coplanar tests (see the file comment). 1e-10 is far
+// above the rounding of the distance computations (~1e-15 of the extent) and far below any
+// shape a caller means as a solid.
+constexpr double kFlatTolerance = 1e-10;
+
+// ---- Exact orientation ------------------------------------------------------------------------
+
+// a + b = s + e exactly (Knuth's two-sum).
+inline void two_sum(double a, double b, double& s, double& e) {
+    s = a + b;
+    const double bv = s - a;
+    const double av = s - bv;
+    e = (a - av) + (b - bv);
+}
+// a * b = p + e exactly (the fused multiply-add computes the rounding error exactly).
+inline void two_product(double a, double b, double& p, double& e) {
+    p = a * b;
+    e = std::fma(a, b, -p);
+}
+
+// A nonoverlapping floating-point expansion in increasing magnitude, zeros removed. Its exact
+// value is the sum of its components; its sign is that of its last (largest) component. A sum
+// of doubles spans at most ~2100 bits, so fewer than 48 nonoverlapping components exist.
+struct Expansion {
+    std::array<double, 64> c{};
+    int n = 0;
+    // Shewchuk's Grow-Expansion: adds b exactly, keeps the expansion nonoverlapping.
+    void add(double b) {
+        double q = b;
+        int out = 0;
+        for (int i = 0; i < n; ++i) {
+            double s, e;
+            two_sum(q, c[static_cast<size_t>(i)], s, e);
+            q = s;
+            if (e != 0) c[static_cast<size_t>(out++)] = e;
+        }
+        if (q != 0) c[static_cast<size_t>(out++)] = q;
+        n = out;
+    }
+    int sign() const { return n == 0 ? 0 : (c[static_cast<size_t>(n - 1)] > 0 ? 1 : -1); }
+};
+
+// Adds sign * x * y * z exactly, each factor given as a two-component exact value.
+inline void add_triple(Expansion& acc, double sign, const double x[2], const double y[2], const double z[2]) {
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+            double p, pe;
+            two_product(x[i], y[j], p, pe);
+            for (int k = 0; k < 2; ++k) {
+                double q, qe, r, re;
+                two_product(p, z[k], q, qe);
+                two_product(pe, z[k], r, re);
+                acc.add(sign * re);
+                acc.add(sign * qe);
+                acc.add(sign * r);
+                acc.add(sign * q);
+            }
+        }
+}
+
+// Exact sign of det[b - a, c - a, q - a]. Exact as long as no partial product underflows
+// (coordinates are rescaled to magnitude < 1 first, so only differences below ~1e-100 could).
+int orient_exact(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
+    double u[3][2], v[3][2], w[3][2];
+    for (int i = 0; i < 3; ++i) {
+        two_sum(b[i], -a[i], u[i][0], u[i][1]);
+        two_sum(c[i], -a[i], v[i][0], v[i][1]);
+        two_sum(q[i], -a[i], w[i][0], w[i][1]);
+    }
+    // u . (v x w) as its six signed triple products.
+    Expansion acc;
+    add_triple(acc, +1, u[0], v[1], w[2]);
+    add_triple(acc, -1, u[0], v[2], w[1]);
+    add_triple(acc, +1, u[1], v[2], w[0]);
+    add_triple(acc, -1, u[1], v[0], w[2]);
+    add_triple(acc, +1, u[2], v[0], w[1]);
+    add_triple(acc, -1, u[2], v[1], w[0]);
+    return acc.sign();
+}
+
+// Floating-point value of det[b - a, c - a, q - a] (six times the signed volume; positive when q
+// is above the plane of the counter-clockwise triangle a, b, c) and its sign, exact.
+struct Orientation {
+    double value;
+    int sign;
+};
+inline Orientation orient(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
+    const Vec3 u = b - a, v = c - a, w = q - a;
+    const double vywz = v.y * w.z, vzwy = v.z * w.y;
+    const double vzwx = v.z * w.x, vxwz = v.x * w.z;
+    const double vxwy = v.x * w.y, vywx = v.y * w.x;
+    const double det = u.x * (vywz - vzwy) + u.y * (vzwx - vxwz) + u.z * (vxwy - vywx);
+    const double permanent = std::fabs(u.x) * (std::fabs(vywz) + std::fabs(vzwy)) +
+                             std::fabs(u.y) * (std::fabs(vzwx) + std::fabs(vxwz)) +
+                             std::fabs(u.z) * (std::fabs(vxwy) + std::fabs(vywx));
+    // Shewchuk's orient3d bound is (7 + 56 eps) eps * permanent with eps = 2^-53 (~7.8e-16);
+    // 1e-15 covers it. Below 1e-280 the products may have lost bits to underflow: go exact.
+    const double bound = 1e-15 * permanent;
+    if (permanent > 1e-280) {
+        if (det > bound) return {det, 1};
+        if (det < -bound) return {det, -1};
+    }
+    return {det, orient_exact(a, b, c, q)};
+}
+
+// ---- Quickhull ---------------------------------------------------------------------------------
+
+constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+
+struct Face {
+    uint32_t v[3];    // counter-clockwise seen from outside
+    uint32_t adj[3];  // adj[i]: the face across edge v[i] -> v[(i + 1) % 3]
+    std::vector<uint32_t> outside;  // points strictly above, not yet on the hull
+    uint32_t farthest = kNone;
+    double farthest_value = 0;
+    bool alive = true;
+};
+
+class Quickhull {
+public:
+    explicit Quickhull(const std::vector<Vec3>& p) : pts_(p), horizon_from_(p.size(), kNone) {}
+
+    // Builds the hull of the points `ids` starting from the tetrahedron t (orient(t) < 0).
+    void build(const std::vector<uint32_t>& ids, const std::array<uint32_t, 4>& t) {
+        const uint32_t f[4][3] = {{t[0], t[1], t[2]}, {t[0], t[3], t[1]}, {t[0], t[2], t[3]}, {t[1], t[3], t[2]}};
+        for (const auto& tri : f) new_face(tri[0], tri[1], tri[2]);
+        link_all_pairs(0, 4);
+        std::vector<uint32_t> candidates;
+        candidates.reserve(ids.size());
+        for (uint32_t i : ids)
+            if (i != t[0] && i != t[1] && i != t[2] && i != t[3]) candidates.push_back(i);
+        distribute(candidates, 0, 4);
+        for (uint32_t i = 0; i < 4; ++i)
+            if (!faces_[i].outside.empty()) pending_.push_back(i);
+
+        while (!pending_.empty()) {
+            const uint32_t fi = pending_.back();
+            pending_.pop_back();
+            if (!faces_[fi].alive || faces_[fi].outside.empty()) continue;
+            add_point(fi, faces_[fi].farthest);
+        }
+    }
+
+    const std::vector<Face>& faces() const { return faces_; }
+
+private:
+    uint32_t new_face(uint32_t a, uint32_t b, uint32_t c) {
+        uint32_t fi;
+        if (!free_.empty()) {
+            fi = free_.back();
+            free_.pop_back();
+        } else {
+            fi = static_cast<uint32_t>(faces_.size());
+            faces_.emplace_back();
+        }
+        Face& f = faces_[fi];
+        f.v[0] = a;
+        f.v[1] = b;
+        f.v[2] = c;
+        f.adj[0] = f.adj[1] = f.adj[2] = kNone;
+        f.outside.clear();
+        f.farthest = kNone;
+        f.farthest_value = 0;
+        f.alive = true;
+        return fi;
+    }
+
+    // Adjacency among the faces [first, first + n) by matching opposite directed edges.
+    void link_all_pairs(uint32_t first, uint32_t n) {
+        for (uint32_t i = first; i < first + n; ++i)
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t a = faces_[i].v[e], b = faces_[i].v[(e + 1) % 3];
+                for (uint32_t j = first; j < first + n; ++j)
+                    for (int k = 0; k < 3; ++k)
+                        if (faces_[j].v[k] == b && faces_[j].v[(k + 1) % 3] == a) faces_[i].adj[e] = j;
+            }
+    }
+
+    Orientation side(const Face& f, uint32_t q) const { return orient(pts_[f.v[0]], pts_[f.v[1]], pts_[f.v[2]], pts_[q]); }
+
+    // Gives each point to the first face among [first_face .. first_face + n_faces) of
+    // `face_list` (or of the range, when face_list is null) that it is strictly above.
+    void distribute(const std::vector<uint32_t>& points, uint32_t first_face, uint32_t n_faces,
+                    const std::vector<uint32_t>* face_list = nullptr) {
+        for (uint32_t q : points) {
+            for (uint32_t k = 0; k < n_faces; ++k) {
+                const uint32_t fi = face_list ? (*face_list)[k] : first_face + k;
+                Face& f = faces_[fi];
+                const Orientation o = side(f, q);
+                if (o.sign > 0) {
+                    f.outside.push_back(q);
+                    // The determinant is the distance times a per-face constant.
+                    if (f.farthest == kNone || o.value > f.farthest_value) {
+                        f.farthest = q;
+                        f.farthest_value = o.value;
+                    }
+                    break;
+                }
+            }
+        }
+    }
+
+    void add_point(uint32_t start, uint32_t p) {
+        // The faces p sees strictly: a connected disk whose boundary is the horizon.
+        ++stamp_;
+        visible_.clear();
+        visible_.push_back(start);
+        mark(start, 1);
+        for (size_t k = 0; k < visible_.size(); ++k) {
+            const Face& f = faces_[visible_[k]];
+            for (uint32_t g : f.adj) {
+                if (seen_stamp(g)) continue;
+                const bool sees = side(faces_[g], p).sign > 0;
+                mark(g, sees ? 1 : 0);
+                if (sees) visible_.push_back(g);
+            }
+        }
+        // Horizon edges a -> b (orientation of the visible face) with the kept face across.
+        horizon_.clear();
+        for (uint32_t fi : visible_) {
+            const Face& f = faces_[fi];
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t g = f.adj[e];
+                if (seen_visible(g)) continue;
+                horizon_from_[f.v[e]] = static_cast<uint32_t>(horizon_.size());
+                horizon_.push_back({f.v[e], f.v[(e + 1) % 3], g});
+            }
+        }
+        // Orphaned points, in a deterministic order; p itself joins the hull.
+        orphans_.clear();
+        for (uint32_t fi : visible_) {
+            Face& f = faces_[fi];
+            for (uint32_t q : f.outside)
+                if (q != p) orphans_.push_back(q);
+            f.outside.clear();
+            f.alive = false;
+        }
+        for (uint32_t fi : visible_) free_.push_back(fi);
+
+        // Walk the horizon as a cycle and cone it to p: face (a, b, p) per edge a -> b.
+        new_faces_.clear();
+        uint32_t e = 0;
+        for (size_t k = 0; k < horizon_.size(); ++k) {
+            const HorizonEdge h = horizon_[e];
+            const uint32_t fi = new_face(h.a, h.b, p);
+            new_faces_.push_back(fi);
+            faces_[fi].adj[0] = h.across;
+            Face& g = faces_[h.across];
+            for (int j = 0; j < 3; ++j)
+                if (g.v[j] == h.b && g.v[(j + 1) % 3] == h.a) g.adj[j] = fi;
+            e = horizon_from_[h.b];
+            // Exact signs make the horizon one simple cycle; anything else is a bug, not input.
+            if (e == kNone) throw std::logic_error("kairos: quickhull horizon is not a cycle");
+        }
+        const size_t m = new_faces_.size();
+        for (size_t k = 0; k < m; ++k) {
+            faces_[new_faces_[k]].adj[1] = new_faces_[(k + 1) % m];      // edge b -> p
+            faces_[new_faces_[k]].adj[2] = new_faces_[(k + m - 1) % m];  // edge p -> a
+        }
+        for (const HorizonEdge& h : horizon_) horizon_from_[h.a] = kNone;
+
+        distribute(orphans_, 0, static_cast<uint32_t>(m), &new_faces_);
+        for (uint32_t fi : new_faces_)
+            if (!faces_[fi].outside.empty()) pending_.push_back(fi);
+    }
+
+    void mark(uint32_t fi, int visible) {
+        if (face_stamp_.size() < faces_.size()) {
+            face_stamp_.resize(faces_.size(), 0);
+            face_visible_.resize(faces_.size(), 0);
+        }
+        face_stamp_[fi] = stamp_;
+        face_visible_[fi] = static_cast<uint8_t>(visible);
+    }
+    bool seen_stamp(uint32_t fi) const { return fi < face_stamp_.size() && face_stamp_[fi] == stamp_; }
+    bool seen_visible(uint32_t fi) const { return seen_stamp(fi) && face_visible_[fi] != 0; }
+
+    struct HorizonEdge {
+        uint32_t a, b, across;
+    };
+
+    const std::vector<Vec3>& pts_;
+    std::vector<Face> faces_;
+    std::vector<uint32_t> free_, pending_, visible_, orphans_, new_faces_;
+    std::vector<HorizonEdge> horizon_;
+    std::vector<uint32_t> horizon_from_;  // per point: index of the horizon edge leaving it
+    std::vector<uint64_t> face_stamp_;
+    std::vector<uint8_t> face_visible_;
+    uint64_t stamp_ = 0;
+};
+
+// Index of the point of `ids` farthest from the line through a and b (Euclidean, rounded).
+uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 a, Vec3 b, double& out_dist) {
+    const Vec3 u = normalized_or(b - a, {1, 0, 0});
+    uint32_t best = ids[0];
+    out_dist = -1;
+    for (uint32_t i : ids) {
+        const double dist = length(cross(p[i] - a, u));
+        if (dist > out_dist) {
+            out_dist = dist;
+            best = i;
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** out_shape) {
+    if (count < 4) return HullStatus::TooFewPoints;
+    for (size_t i = 0; i < count; ++i)
+        if (!is_finite(points[i])) return HullStatus::NonFinite;
+    if (count >= kNone) throw std::bad_alloc();  // indices are 32-bit
+
+    // Rescale by a power of two (exact) so that products in the predicates cannot overflow.
+    double largest = 0;
+    for (size_t i = 0; i < count; ++i) largest = std::fmax(largest, max_abs(points[i]));
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    std::vector<Vec3> p(count);
+    for (size_t i = 0; i < count; ++i)
+        p[i] = {std::ldexp(points[i].x, -exponent), std::ldexp(points[i].y, -exponent), std::ldexp(points[i].z, -exponent)};
+
+    // Extreme points along the widest axis of the bounding box (first index on ties).
+    Vec3 lo = p[0], hi = p[0];
+    for (const Vec3& x : p) {
+        lo = cwise_min(lo, x);
+        hi = cwise_max(hi, x);
+    }
+    const Vec3 size = hi - lo;
+    const int axis = size.x >= size.y ? (size.x >= size.z ? 0 : 2) : (size.y >= size.z ? 1 : 2);
+    const double extent = size[axis];
+    if (!(extent > 0)) return HullStatus::Collinear;  // a single point repeated
+    const double tolerance = kFlatTolerance * extent;
+
+    std::vector<uint32_t> ids(count);
+    for (size_t i = 0; i < count; ++i) ids[i] = static_cast<uint32_t>(i);
+    uint32_t i0 = 0, i1 = 0;
+    for (uint32_t i : ids) {
+        if (p[i][axis] < p[i0][axis]) i0 = i;
+        if (p[i][axis] > p[i1][axis]) i1 = i;
+    }
+    double line_dist = 0;
+    const uint32_t i2 = farthest_from_line(p, ids, p[i0], p[i1], line_dist);
+    if (!(line_dist > tolerance)) return HullStatus::Collinear;
+    const Vec3 normal = normalized_or(cross(p[i1] - p[i0], p[i2] - p[i0]), {0, 0, 1});
+    uint32_t i3 = i0;
+    double plane_dist = -1;
+    for (uint32_t i : ids) {
+        const double dist = std::fabs(dot(p[i] - p[i0], normal));
+        if (dist > plane_dist) {
+            plane_dist = dist;
+            i3 = i;
+        }
+    }
+    if (!(plane_dist > tolerance)) return HullStatus::Coplanar;
+
+    std::array<uint32_t, 4> tetra{i0, i1, i2, i3};
+    const int s = orient(p[i0], p[i1], p[i2], p[i3]).sign;
+    if (s > 0) std::swap(tetra[1], tetra[2]);
+    // s == 0 cannot happen: i3 is more than 1e-10 * extent from the plane.
+
+    // Build; drop points on faces or edges; rebuild from the true vertices if any were dropped.
+    std::vector<uint32_t> hull_vertices;
+    std::vector<std::pair<uint32_t, uint32_t>> edges;  // (smaller, larger) per hull edge
+    for (int attempt = 0;; ++attempt) {
+        Quickhull qh(p);
+        qh.build(ids, tetra);
+        const auto& faces = qh.faces();
+        std::vector<uint32_t> bends(count, 0);
+        std::vector<uint8_t> on_hull(count, 0);
+        edges.clear();
+        for (const Face& f : faces) {
+            if (!f.alive) continue;
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t a = f.v[e], b = f.v[(e + 1) % 3];
+                on_hull[a] = 1;
+                if (a > b) continue;  // each edge once, from the face where it runs upward
+                edges.emplace_back(a, b);
+                const Face& g = faces[f.adj[e]];
+                uint32_t opposite = g.v[0];
+                for (uint32_t w : g.v)
+                    if (w != a && w != b) opposite = w;
+                if (orient(p[f.v[0]], p[f.v[1]], p[f.v[2]], p[opposite]).sign != 0) {
+                    ++bends[a];
+                    ++bends[b];
+                }
+            }
+        }
+        // A rebuild from true vertices drops none; the attempt cap is only a guard.
+        const bool last = attempt == 2;
+        hull_vertices.clear();
+        bool dropped = false;
+        for (uint32_t i = 0; i < count; ++i) {
+            if (!on_hull[i]) continue;
+            if (bends[i] >= 3 || last) hull_vertices.push_back(i);
+            else dropped = true;
+        }
+        if (!dropped) break;
+        ids = hull_vertices;
+        // The tetrahedron may have used a dropped point: pick a new one among the vertices.
+        const uint32_t a = ids[0];
+        uint32_t b = ids[0];
+        for (uint32_t i : ids)
+            if (length_sq(p[i] - p[a]) > length_sq(p[b] - p[a])) b = i;
+        double unused = 0;
+        const uint32_t c = farthest_from_line(p, ids, p[a], p[b], unused);
+        uint32_t d = a;
+        double best = 0;
+        for (uint32_t i : ids) {
+            const double v = std::fabs(orient(p[a], p[b], p[c], p[i]).value);
+            if (v > best) {
+                best = v;
+                d = i;
+            }
+        }
+        tetra = {a, b, c, d};
+        if (orient(p[a], p[b], p[c], p[d]).sign > 0) std::swap(tetra[1], tetra[2]);
+    }
+
+    auto shape = std::make_unique<ConvexHullShape>();
+    shape->vertices.reserve(hull_vertices.size());
+    std::vector<uint32_t> index_of(count, kNone);
+    for (uint32_t i : hull_vertices) {
+        index_of[i] = static_cast<uint32_t>(shape->vertices.size());
+        shape->vertices.push_back(points[i]);
+    }
+    if (hull_vertices.size() > ConvexHullShape::kHillClimbThreshold) {
+        // Edge graph in compressed rows, neighbours of each vertex in increasing order.
+        std::vector<std::pair<uint32_t, uint32_t>> directed;
+        directed.reserve(2 * edges.size());
+        for (const auto& [a, b] : edges) {
+            directed.emplace_back(index_of[a], index_of[b]);
+            directed.emplace_back(index_of[b], index_of[a]);
+        }
+        std::sort(directed.begin(), directed.end());
+        const size_t nv = hull_vertices.size();
+        shape->neighbor_offsets.assign(nv + 1, 0);
+        shape->neighbors.reserve(directed.size());
+        for (const auto& [from, to] : directed) {
+            ++shape->neighbor_offsets[from + 1];
+            shape->neighbors.push_back(to);
+        }
+        for (size_t i = 0; i < nv; ++i) shape->neighbor_offsets[i + 1] += shape->neighbor_offsets[i];
+    }
+    *out_shape = shape.release();
+    return HullStatus::Ok;
+}
+
 }  // namespace kairos

@@ -1,0 +1,440 @@
+// Convex hull construction against brute force: kept vertices, supports, adjacency, errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "shape.hpp"
+
+namespace kairos {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr uint64_t kSeed = 7130;
+__extension__ typedef __int128 Int128;
+
+using Rng = std::mt19937_64;
+
+double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+int64_t uniform_int(Rng& rng, int64_t lo, int64_t hi) { return std::uniform_int_distribution<int64_t>(lo, hi)(rng); }
+
+Vec3 random_unit(Rng& rng) {
+    for (;;) {
+        const Vec3 v{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
+        const double n = length(v);
+        if (n > 0.1 && n <= 1) return v / n;
+    }
+}
+
+// ---- Brute force over integer points, in exact integer arithmetic ------------------------------
+
+struct IPoint {
+    int64_t x, y, z;
+    auto operator<=>(const IPoint&) const = default;
+};
+IPoint operator-(IPoint a, IPoint b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+IPoint cross(IPoint a, IPoint b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+Int128 dot(IPoint a, IPoint b) { return Int128(a.x) * b.x + Int128(a.y) * b.y + Int128(a.z) * b.z; }
+bool is_zero(IPoint a) { return a.x == 0 && a.y == 0 && a.z == 0; }
+Int128 det(IPoint a, IPoint b, IPoint c) {
+    // a . (b x c) with the cross product widened: the normals here have up to ~25 bits.
+    const Int128 cx = Int128(b.y) * c.z - Int128(b.z) * c.y;
+    const Int128 cy = Int128(b.z) * c.x - Int128(b.x) * c.z;
+    const Int128 cz = Int128(b.x) * c.y - Int128(b.y) * c.x;
+    return cx * a.x + cy * a.y + cz * a.z;
+}
+
+// Vertices of the convex hull of integer points (|coordinates| < 2^12), by brute force.
+// Every plane through three non-collinear points with all points on one side is a facet plane
+// (its intersection with the hull holds a triangle, so it is 2-dimensional). A point is a vertex
+// of the polytope iff its normal cone is 3-dimensional, i.e. iff the facet planes through it
+// have three linearly independent normals; points inside a facet lie on one facet plane, points
+// inside an edge on two, interior points on none.
+std::vector<IPoint> brute_force_vertices(std::vector<IPoint> pts) {
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    const size_t n = pts.size();
+    std::vector<std::vector<IPoint>> normals(n);
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            for (size_t k = j + 1; k < n; ++k) {
+                const IPoint normal = cross(pts[j] - pts[i], pts[k] - pts[i]);
+                if (is_zero(normal)) continue;
+                bool above = false, below = false;
+                for (size_t m = 0; m < n && !(above && below); ++m) {
+                    const Int128 s = dot(normal, pts[m] - pts[i]);
+                    above |= s > 0;
+                    below |= s < 0;
+                }
+                if (above && below) continue;
+                for (size_t m = 0; m < n; ++m)
+                    if (dot(normal, pts[m] - pts[i]) == 0) normals[m].push_back(normal);
+            }
+    std::vector<IPoint> vertices;
+    for (size_t m = 0; m < n; ++m) {
+        const auto& ns = normals[m];
+        if (ns.empty()) continue;
+        const IPoint a = ns[0];
+        size_t second = 0;
+        while (second < ns.size() && is_zero(cross(a, ns[second]))) ++second;
+        if (second == ns.size()) continue;
+        const IPoint b = ns[second];
+        bool full = false;
+        for (const IPoint& c : ns) full |= det(a, b, c) != 0;
+        if (full) vertices.push_back(pts[m]);
+    }
+    return vertices;
+}
+
+Vec3 to_vec(IPoint p, double scale = 1) {
+    return {static_cast<double>(p.x) * scale, static_cast<double>(p.y) * scale, static_cast<double>(p.z) * scale};
+}
+std::vector<Vec3> to_vecs(const std::vector<IPoint>& pts, double scale = 1) {
+    std::vector<Vec3> out;
+    for (const IPoint& p : pts) out.push_back(to_vec(p, scale));
+    return out;
+}
+
+bool vec_less(Vec3 a, Vec3 b) {
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    return a.z < b.z;
+}
+std::vector<Vec3> sorted(std::vector<Vec3> v) {
+    std::sort(v.begin(), v.end(), vec_less);
+    return v;
+}
+
+struct HullHolder {
+    ConvexHullShape* shape = nullptr;
+    HullStatus status = HullStatus::TooFewPoints;
+    explicit HullHolder(const std::vector<Vec3>& pts) { status = make_convex_hull(pts.data(), pts.size(), &shape); }
+    ~HullHolder() {
+        if (shape) shape->release();
+    }
+    HullHolder(const HullHolder&) = delete;
+    HullHolder& operator=(const HullHolder&) = delete;
+};
+
+double max_dot(const std::vector<Vec3>& pts, Vec3 d) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (const Vec3& p : pts) best = std::max(best, dot(d, p));
+    return best;
+}
+double max_length(const std::vector<Vec3>& pts) {
+    double r = 0;
+    for (const Vec3& p : pts) r = std::max(r, length(p));
+    return r;
+}
+
+// The hull's support, both its member and the generic dispatch, against the maximum over all
+// input points; and the kept vertices are input points.
+void expect_supports_match(const ConvexHullShape& hull, const std::vector<Vec3>& inputs, Rng& rng, int n_dirs) {
+    const std::vector<Vec3> sorted_inputs = sorted(inputs);
+    for (const Vec3& v : hull.vertices) ASSERT_TRUE(std::binary_search(sorted_inputs.begin(), sorted_inputs.end(), v, vec_less));
+    const double scale = max_length(inputs);
+    for (int k = 0; k < n_dirs; ++k) {
+        const Vec3 d = random_unit(rng);
+        const Vec3 s = support(hull, d);
+        ASSERT_EQ(s, hull.support(d));
+        ASSERT_NEAR(dot(d, s), max_dot(inputs, d), 8 * kEps * scale) << "direction #" << k;
+    }
+}
+
+// Checks the kept vertices of a hull of integer points (times `scale`) against brute force.
+void expect_vertices_match_brute_force(const std::vector<IPoint>& pts, double scale, Rng& rng) {
+    const std::vector<Vec3> inputs = to_vecs(pts, scale);
+    HullHolder hull(inputs);
+    ASSERT_EQ(hull.status, HullStatus::Ok);
+    const std::vector<Vec3> expected = sorted(to_vecs(brute_force_vertices(pts), scale));
+    ASSERT_EQ(sorted(hull.shape->vertices), expected) << "kept " << hull.shape->vertices.size() << " of " << inputs.size()
+                                                      << " points, brute force finds " << expected.size();
+    expect_supports_match(*hull.shape, inputs, rng, 200);
+}
+
+std::vector<IPoint> random_int_points(Rng& rng, int n, int64_t r) {
+    std::vector<IPoint> pts;
+    for (int i = 0; i < n; ++i) pts.push_back({uniform_int(rng, -r, r), uniform_int(rng, -r, r), uniform_int(rng, -r, r)});
+    return pts;
+}
+
+// ---- Vertices against brute force -----------------------------------------------------------------
+
+TEST(HullBruteForce, RandomCubeClouds) {
+    for (int trial = 0; trial < 8; ++trial) {
+        const uint64_t seed = kSeed + static_cast<uint64_t>(trial);
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", random cube cloud");
+        Rng rng(seed);
+        expect_vertices_match_brute_force(random_int_points(rng, 50, 1000), 1.0 / 1024, rng);
+        if (HasFatalFailure()) return;
+    }
+}
+
+TEST(HullBruteForce, GridPointsWithManyCoplanarAndCollinear) {
+    for (int trial = 0; trial < 8; ++trial) {
+        const uint64_t seed = kSeed + 100 + static_cast<uint64_t>(trial);
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", subset of the grid {-3..3}^3");
+        Rng rng(seed);
+        expect_vertices_match_brute_force(random_int_points(rng, 60, 3), 0.5, rng);
+        if (HasFatalFailure()) return;
+    }
+}
+
+TEST(HullBruteForce, Duplicates) {
+    for (int trial = 0; trial < 4; ++trial) {
+        const uint64_t seed = kSeed + 200 + static_cast<uint64_t>(trial);
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", every point three times, shuffled");
+        Rng rng(seed);
+        std::vector<IPoint> base = random_int_points(rng, 20, trial < 2 ? 100 : 2);
+        std::vector<IPoint> pts;
+        for (int copy = 0; copy < 3; ++copy) pts.insert(pts.end(), base.begin(), base.end());
+        std::shuffle(pts.begin(), pts.end(), rng);
+        expect_vertices_match_brute_force(pts, 1, rng);
+        if (HasFatalFailure()) return;
+    }
+}
+
+// Points on the faces and edges of a cube, with and without its corners.
+std::vector<IPoint> cube_surface_points(Rng& rng, bool with_corners) {
+    const int64_t h = 64;
+    std::vector<IPoint> pts;
+    if (with_corners)
+        for (int c = 0; c < 8; ++c) pts.push_back({c & 1 ? h : -h, c & 2 ? h : -h, c & 4 ? h : -h});
+    for (int i = 0; i < 40; ++i) {  // on faces
+        int64_t v[3] = {uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1)};
+        v[uniform_int(rng, 0, 2)] = uniform_int(rng, 0, 1) ? h : -h;
+        pts.push_back({v[0], v[1], v[2]});
+    }
+    for (int i = 0; i < 20; ++i) {  // on edges
+        int64_t v[3] = {uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1)};
+        const int64_t free_axis = uniform_int(rng, 0, 2);
+        for (int64_t a = 0; a < 3; ++a)
+            if (a != free_axis) v[a] = uniform_int(rng, 0, 1) ? h : -h;
+        pts.push_back({v[0], v[1], v[2]});
+    }
+    for (int i = 0; i < 10; ++i) pts.push_back({uniform_int(rng, -h, h), uniform_int(rng, -h, h), uniform_int(rng, -h, h)});
+    std::shuffle(pts.begin(), pts.end(), rng);
+    return pts;
+}
+
+TEST(HullBruteForce, CubeWithPointsOnFacesAndEdges) {
+    for (int trial = 0; trial < 4; ++trial) {
+        const uint64_t seed = kSeed + 300 + static_cast<uint64_t>(trial);
+        Rng rng(seed);
+        {
+            SCOPED_TRACE("seed " + std::to_string(seed) + ", cube with corners");
+            const std::vector<IPoint> pts = cube_surface_points(rng, true);
+            HullHolder hull(to_vecs(pts));
+            ASSERT_EQ(hull.status, HullStatus::Ok);
+            // Closed form: exactly the 8 corners.
+            std::vector<Vec3> corners;
+            for (int c = 0; c < 8; ++c) corners.push_back({c & 1 ? 64.0 : -64.0, c & 2 ? 64.0 : -64.0, c & 4 ? 64.0 : -64.0});
+            EXPECT_EQ(sorted(hull.shape->vertices), sorted(corners));
+            expect_vertices_match_brute_force(pts, 1, rng);
+        }
+        {
+            SCOPED_TRACE("seed " + std::to_string(seed) + ", cube faces and edges without corners");
+            expect_vertices_match_brute_force(cube_surface_points(rng, false), 1, rng);
+        }
+        if (HasFatalFailure()) return;
+    }
+}
+
+TEST(HullClosedForm, FullGridAndOctahedron) {
+    std::vector<Vec3> grid, octahedron;
+    for (int x = -3; x <= 3; ++x)
+        for (int y = -3; y <= 3; ++y)
+            for (int z = -3; z <= 3; ++z) {
+                grid.push_back({double(x), double(y), double(z)});
+                if (std::abs(x) + std::abs(y) + std::abs(z) <= 3) octahedron.push_back({double(x), double(y), double(z)});
+            }
+    Rng rng(kSeed + 400);
+    std::shuffle(grid.begin(), grid.end(), rng);
+    HullHolder cube(grid), octa(octahedron);
+    ASSERT_EQ(cube.status, HullStatus::Ok);
+    ASSERT_EQ(octa.status, HullStatus::Ok);
+    std::vector<Vec3> corners, tips;
+    for (int c = 0; c < 8; ++c) corners.push_back({c & 1 ? 3.0 : -3.0, c & 2 ? 3.0 : -3.0, c & 4 ? 3.0 : -3.0});
+    for (int a = 0; a < 3; ++a)
+        for (double s : {-3.0, 3.0}) {
+            Vec3 t{};
+            t[a] = s;
+            tips.push_back(t);
+        }
+    EXPECT_EQ(sorted(cube.shape->vertices), sorted(corners));
+    EXPECT_EQ(sorted(octa.shape->vertices), sorted(tips));
+    expect_supports_match(*cube.shape, grid, rng, 300);
+    expect_supports_match(*octa.shape, octahedron, rng, 300);
+}
+
+TEST(HullBruteForce, PowerOfTwoScalesGiveTheSameHull) {
+    Rng rng(kSeed + 500);
+    const std::vector<IPoint> pts = random_int_points(rng, 40, 500);
+    for (double scale : {std::ldexp(1.0, 900), std::ldexp(1.0, -900), std::ldexp(1.0, -1000)}) {
+        SCOPED_TRACE("seed " + std::to_string(kSeed + 500) + ", scale 2^" + std::to_string(std::ilogb(scale)));
+        expect_vertices_match_brute_force(pts, scale, rng);
+    }
+}
+
+// ---- Points on a sphere: every point is a vertex ----------------------------------------------------
+
+TEST(HullSphere, CoSphericalPointsAreAllVerticesAndClimbingIsExact) {
+    Rng rng(kSeed + 600);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 600));
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 1000; ++i) pts.push_back(2.5 * random_unit(rng) + Vec3{1, -2, 3});
+    HullHolder hull(pts);
+    ASSERT_EQ(hull.status, HullStatus::Ok);
+    const ConvexHullShape& h = *hull.shape;
+    // Distinct points on a sphere are in convex position (margins ~1e-3, far above rounding).
+    ASSERT_EQ(sorted(h.vertices), sorted(pts));
+    // The edge graph: symmetric, simple, and a triangulated sphere has E = 3V - 6 edges.
+    ASSERT_EQ(h.neighbor_offsets.size(), h.vertices.size() + 1);
+    ASSERT_EQ(h.neighbors.size(), 2 * (3 * h.vertices.size() - 6));
+    for (uint32_t v = 0; v < h.vertices.size(); ++v) {
+        ASSERT_GE(h.neighbor_offsets[v + 1] - h.neighbor_offsets[v], 3u);
+        for (uint32_t k = h.neighbor_offsets[v]; k < h.neighbor_offsets[v + 1]; ++k) {
+            const uint32_t w = h.neighbors[k];
+            ASSERT_NE(w, v);
+            if (k > h.neighbor_offsets[v]) {
+                ASSERT_LT(h.neighbors[k - 1], w);
+            }
+            const auto first = h.neighbors.begin() + h.neighbor_offsets[w], last = h.neighbors.begin() + h.neighbor_offsets[w + 1];
+            ASSERT_NE(std::find(first, last, v), last) << "edge " << v << "-" << w << " is one-way";
+        }
+    }
+    const double scale = max_length(pts);
+    for (int k = 0; k < 3000; ++k) {
+        const Vec3 d = random_unit(rng);
+        ASSERT_NEAR(dot(d, h.support(d)), max_dot(h.vertices, d), 8 * kEps * scale) << "direction #" << k;
+    }
+    // Zero, tiny and huge directions still give a vertex.
+    for (Vec3 d : {Vec3{}, 1e-300 * random_unit(rng), 1e300 * random_unit(rng)})
+        EXPECT_NE(std::find(h.vertices.begin(), h.vertices.end(), h.support(d)), h.vertices.end());
+}
+
+TEST(HullClimb, PrismWithFlatFacesAndPointsOnEdges) {
+    // 48 points on a circle at z = 0 and z = 1: the vertices. Points on the vertical edges and
+    // inside the top and bottom faces lie exactly on the hull and must not be kept.
+    Rng rng(kSeed + 700);
+    std::vector<Vec3> pts, ring;
+    for (int i = 0; i < 48; ++i) {
+        const double a = 2 * M_PI * i / 48;
+        ring.push_back({std::cos(a), std::sin(a), 0});
+        ring.push_back({std::cos(a), std::sin(a), 1});
+        pts.push_back({std::cos(a), std::sin(a), 0.5});
+        pts.push_back({std::cos(a), std::sin(a), 0.25});
+    }
+    for (int i = 0; i < 100; ++i) {
+        const double a = uniform(rng, 0, 2 * M_PI), r = uniform(rng, 0, 0.9);
+        pts.push_back({r * std::cos(a), r * std::sin(a), i % 3 == 0 ? 0.0 : (i % 3 == 1 ? 1.0 : uniform(rng, 0, 1))});
+    }
+    pts.insert(pts.end(), ring.begin(), ring.end());
+    std::shuffle(pts.begin(), pts.end(), rng);
+    HullHolder hull(pts);
+    ASSERT_EQ(hull.status, HullStatus::Ok);
+    EXPECT_EQ(sorted(hull.shape->vertices), sorted(ring));
+    ASSERT_EQ(hull.shape->neighbor_offsets.size(), ring.size() + 1);
+    for (int k = 0; k < 2000; ++k) {
+        // Include directions along the axis and perpendicular to it, where faces tie.
+        Vec3 d = random_unit(rng);
+        if (k % 4 == 1) d = {0, 0, k % 8 == 1 ? 1.0 : -1.0};
+        if (k % 4 == 2) d.z = 0;
+        ASSERT_NEAR(dot(d, hull.shape->support(d)), max_dot(pts, d), 8 * kEps * 2) << "direction #" << k;
+    }
+}
+
+TEST(HullDeterminism, SameInputSameHull) {
+    Rng rng(kSeed + 800);
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 3000; ++i) pts.push_back({uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)});
+    for (int i = 0; i < 500; ++i) pts.push_back(random_unit(rng));
+    HullHolder a(pts), b(pts);
+    ASSERT_EQ(a.status, HullStatus::Ok);
+    ASSERT_EQ(b.status, HullStatus::Ok);
+    EXPECT_TRUE(a.shape->vertices == b.shape->vertices);
+    EXPECT_EQ(a.shape->neighbor_offsets, b.shape->neighbor_offsets);
+    EXPECT_EQ(a.shape->neighbors, b.shape->neighbors);
+    // Vertices keep the input order.
+    size_t at = 0;
+    for (const Vec3& v : a.shape->vertices) {
+        while (at < pts.size() && !(pts[at] == v)) ++at;
+        ASSERT_LT(at, pts.size()) << "vertices out of input order";
+    }
+    expect_supports_match(*a.shape, pts, rng, 500);
+}
+
+TEST(HullLarge, HundredThousandPoints) {
+    Rng rng(kSeed + 900);
+    for (int cloud = 0; cloud < 2; ++cloud) {
+        SCOPED_TRACE(cloud == 0 ? "100k in a cube" : "100k on a sphere");
+        std::vector<Vec3> pts;
+        for (int i = 0; i < 100000; ++i)
+            pts.push_back(cloud == 0 ? Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)} : random_unit(rng));
+        const auto start = std::chrono::steady_clock::now();
+        HullHolder hull(pts);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        std::printf("[   INFO   ] hull of 100000 points (%s): %zu vertices in %.3f s\n", cloud == 0 ? "cube" : "sphere",
+                    hull.shape->vertices.size(), seconds);
+        if (cloud == 1) {
+            EXPECT_EQ(hull.shape->vertices.size(), pts.size());
+        }
+        expect_supports_match(*hull.shape, pts, rng, 50);
+    }
+}
+
+// ---- Errors ---------------------------------------------------------------------------------------
+
+HullStatus status_of(const std::vector<Vec3>& pts) {
+    ConvexHullShape* shape = nullptr;
+    const HullStatus s = make_convex_hull(pts.data(), pts.size(), &shape);
+    if (shape) shape->release();
+    EXPECT_TRUE(s == HullStatus::Ok || shape == nullptr) << "an error must not produce a shape";
+    return s;
+}
+
+TEST(HullErrors, DegenerateInputs) {
+    Rng rng(kSeed + 1000);
+    EXPECT_EQ(status_of({}), HullStatus::TooFewPoints);
+    EXPECT_EQ(status_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), HullStatus::TooFewPoints);
+    EXPECT_EQ(status_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), HullStatus::Ok);
+    EXPECT_EQ(status_of(std::vector<Vec3>(10, Vec3{1, 2, 3})), HullStatus::Collinear);
+
+    const Vec3 origin{1000, -300, 20}, u = random_unit(rng), w = random_unit(rng);
+    const Vec3 n = normalized_or(cross(u, w), {0, 0, 1});
+    std::vector<Vec3> line, plane, noisy_plane, thin_slab;
+    for (int i = 0; i < 50; ++i) {
+        line.push_back(origin + uniform(rng, -1, 1) * u);
+        const Vec3 in_plane = origin + uniform(rng, -1, 1) * u + uniform(rng, -1, 1) * w;
+        plane.push_back(in_plane);
+        noisy_plane.push_back(in_plane + uniform(rng, -1e-13, 1e-13) * n);
+        thin_slab.push_back(in_plane + uniform(rng, -1e-6, 1e-6) * n);
+    }
+    EXPECT_EQ(status_of(line), HullStatus::Collinear);
+    EXPECT_EQ(status_of(plane), HullStatus::Coplanar);
+    EXPECT_EQ(status_of(noisy_plane), HullStatus::Coplanar);
+    EXPECT_EQ(status_of(thin_slab), HullStatus::Ok);
+    // Exactly collinear and coplanar integer sets, large and small.
+    EXPECT_EQ(status_of({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {-5, -5, -5}, {1e9, 1e9, 1e9}}), HullStatus::Collinear);
+    EXPECT_EQ(status_of({{0, 0, 7}, {1, 0, 7}, {0, 1, 7}, {5, 5, 7}, {-1e-9, 3, 7}}), HullStatus::Coplanar);
+
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    std::vector<Vec3> good = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    for (double bad : {nan, inf, -inf})
+        for (int axis = 0; axis < 3; ++axis) {
+            std::vector<Vec3> pts = good;
+            pts[3][axis] = bad;
+            EXPECT_EQ(status_of(pts), HullStatus::NonFinite) << "bad value " << bad << " on axis " << axis;
+        }
+}
+
+}  // namespace
+}  // namespace kairos
