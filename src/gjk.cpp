@@ -1,0 +1,327 @@
+// GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
+// no allocation per iteration). All work happens in A's local frame; results go back to the world.
+#include "gjk.hpp"
+
+#include <cmath>
+
+namespace kairos {
+namespace {
+
+using gjk_detail::Simplex;
+
+// ---- Support mappings of the core shapes, in their local frame ---------------------------------
+// Spheres and capsules are handled as a point or a segment plus a radius: GJK runs on the core and
+// the radius is folded into the termination tests (fewer iterations on round shapes).
+
+struct PointSupport {
+    Vec3 operator()(Vec3) const { return {}; }
+};
+struct SegmentSupport {
+    double h;
+    Vec3 operator()(Vec3 d) const { return {0, 0, support_sign(d.z) * h}; }
+};
+struct BoxSupport {
+    Vec3 h;
+    Vec3 operator()(Vec3 d) const { return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z}; }
+};
+// Brute force over a small hull's vertices (the first maximum wins, as in ConvexHullShape).
+struct SmallHullSupport {
+    const Vec3* v;
+    size_t n;
+    Vec3 operator()(Vec3 d) const {
+        size_t best = 0;
+        double best_dot = dot(d, v[0]);
+        for (size_t i = 1; i < n; ++i) {
+            const double s = dot(d, v[i]);
+            if (s > best_dot) {
+                best_dot = s;
+                best = i;
+            }
+        }
+        return v[best];
+    }
+};
+struct GenericSupport {
+    const Shape* s;
+    Vec3 operator()(Vec3 d) const { return support(*s, d); }
+};
+
+// Support of A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
+template <class SA, class SB>
+struct PairSupport {
+    SA sa;
+    SB sb;
+    Mat3 r;
+    Vec3 t;
+    // w = s_A(d) - s_B(-d); also returns the two support points (B's in A's frame).
+    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
+        out_a = sa(d);
+        out_b = r * sb(mul_transpose(r, -d)) + t;
+        return out_a - out_b;
+    }
+};
+
+// ---- The distance loop -------------------------------------------------------------------------
+
+struct LocalDistance {
+    double core_norm_sq;  // ||v||^2 of the final estimate (cores)
+    Vec3 v, point_a, point_b;
+    bool intersecting;
+    uint32_t iterations;
+    Termination termination;
+};
+
+// margin: sum of the radii folded out of the shapes (0 for polytopes). The distance of the
+// rounded shapes is ||v|| - margin.
+template <class Pair>
+LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, uint32_t max_iterations) {
+    Simplex s;
+    // First direction: B lies roughly along t from A, so the closest points are near A's support
+    // toward t and B's support toward -t; v is a guess at a point of A - B (about -t).
+    Vec3 v = -pair.t;
+    if (!(dot(v, v) > 0)) v = {1, 0, 0};
+    double vv = 0;  // ||v||^2 of the simplex's point, once there is one
+    const double margin_sq = margin * margin;
+
+    LocalDistance out{};
+    out.termination = Termination::MaxIterations;
+    uint32_t it = 0;
+    while (it < max_iterations) {
+        Vec3 a, b;
+        const Vec3 w = pair(-v, a, b);
+        ++it;
+        if (s.bits != 0) {
+            const double vw = dot(v, w);
+            // Rule 1: the lower bound vw/||v|| is within tolerance of the upper bound ||v||. With a
+            // margin the distance is ||v|| - margin, so the gap is compared with that instead.
+            const double gap = vv - vw;
+            if (margin == 0 ? gap <= tolerance * vv : gap <= tolerance * std::sqrt(vv) * (std::sqrt(vv) - margin)) {
+                out.termination = Termination::RelativeError;
+                break;
+            }
+            // Rule 5: w is a point seen before in this query: GJK would cycle.
+            if (s.contains(w)) {
+                out.termination = Termination::RepeatedSupport;
+                break;
+            }
+        }
+        const Simplex::Outcome o = s.add(w, a, b, s.bits != 0 ? vv : INFINITY);
+        if (o == Simplex::Outcome::Full) {
+            out.termination = Termination::FullSimplex;
+            vv = 0;
+            break;
+        }
+        if (o == Simplex::Outcome::Failed) {
+            out.termination = Termination::JohnsonFailed;  // s keeps the previous estimate
+            break;
+        }
+        const double nv = dot(s.v, s.v);
+        // Rule 2: v is within rounding of the origin relative to the simplex's size.
+        if (nv <= gjk_detail::kNearContact * s.max_norm_sq()) {
+            out.termination = Termination::NearContact;
+            vv = nv;
+            break;
+        }
+        // Rounded shapes: the cores are within the sum of the radii, so the shapes overlap.
+        if (nv <= margin_sq) {
+            out.termination = Termination::FullSimplex;
+            vv = nv;
+            break;
+        }
+        // Rule 6: no progress. The new estimate is kept only if it is not worse.
+        if (it > 1 && vv - nv <= gjk_detail::kNoProgress * vv) {
+            out.termination = Termination::NoProgress;
+            if (nv <= vv) vv = nv;
+            // A worse estimate was produced by rounding: s.v is still the point found, and it is
+            // within machine epsilon of the previous one.
+            break;
+        }
+        vv = nv;
+        v = s.v;
+    }
+    out.iterations = it;
+    out.v = s.v;
+    out.core_norm_sq = dot(s.v, s.v);
+    s.closest_points(out.point_a, out.point_b);
+    switch (out.termination) {
+        case Termination::FullSimplex:
+        case Termination::NearContact:
+            out.intersecting = true;
+            break;
+        default:
+            out.intersecting = out.core_norm_sq <= margin_sq;
+            break;
+    }
+    return out;
+}
+
+// ---- The intersection loop ---------------------------------------------------------------------
+
+template <class Pair>
+bool intersect_loop(const Pair& pair, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
+    Simplex s;
+    Vec3 v = io_v;
+    double vv = 0;
+    const double margin_sq = margin * margin;
+    uint32_t it = 0;
+    bool result = true;
+    while (it < max_iterations) {
+        Vec3 a, b;
+        const Vec3 w = pair(-v, a, b);
+        ++it;
+        const double vw = dot(v, w);
+        // Separating axis: every point of A - B lies beyond the plane v.x = vw > margin * ||v||.
+        if (vw > 0 && vw * vw > margin_sq * dot(v, v)) {
+            io_v = v;
+            result = false;
+            break;
+        }
+        // w seen before, with vw <= 0: the closest point is within rounding of the origin.
+        if (s.bits != 0 && s.contains(w)) break;
+        const Simplex::Outcome o = s.add(w, a, b, s.bits != 0 ? vv : INFINITY);
+        if (o == Simplex::Outcome::Full || o == Simplex::Outcome::Failed) break;
+        const double nv = dot(s.v, s.v);
+        if (nv <= gjk_detail::kNearContact * s.max_norm_sq() || nv <= margin_sq) break;
+        if (s.bits != 0 && it > 1 && vv - nv <= gjk_detail::kNoProgress * vv) break;
+        vv = nv;
+        v = s.v;
+    }
+    out_iterations = it;
+    return result;
+}
+
+// ---- Dispatch on the pair of support kinds -----------------------------------------------------
+
+enum class Core { Point, Segment, Box, SmallHull, Generic };
+
+struct CoreOf {
+    Core core;
+    double radius;
+};
+
+CoreOf classify(const Shape& s) {
+    switch (s.kind()) {
+        case ShapeKind::Point:
+            return {Core::Point, 0};
+        case ShapeKind::Sphere:
+            return {Core::Point, static_cast<const SphereShape&>(s).radius};
+        case ShapeKind::Segment:
+            return {Core::Segment, 0};
+        case ShapeKind::Capsule:
+            return {Core::Segment, static_cast<const CapsuleShape&>(s).radius};
+        case ShapeKind::Box:
+            return {Core::Box, 0};
+        case ShapeKind::ConvexHull: {
+            const auto& h = static_cast<const ConvexHullShape&>(s);
+            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0};
+            return {Core::Generic, 0};
+        }
+        default:
+            return {Core::Generic, 0};
+    }
+}
+
+template <class Fn>
+auto with_support(const Shape& s, Core c, Fn&& fn) {
+    switch (c) {
+        case Core::Point:
+            return fn(PointSupport{});
+        case Core::Segment:
+            return fn(SegmentSupport{s.kind() == ShapeKind::Capsule ? static_cast<const CapsuleShape&>(s).half_height
+                                                                    : static_cast<const SegmentShape&>(s).half_length});
+        case Core::Box:
+            return fn(BoxSupport{static_cast<const BoxShape&>(s).half_extents});
+        case Core::SmallHull: {
+            const auto& h = static_cast<const ConvexHullShape&>(s);
+            return fn(SmallHullSupport{h.vertices.data(), h.vertices.size()});
+        }
+        case Core::Generic:
+            break;
+    }
+    return fn(GenericSupport{&s});
+}
+
+// Calls fn(pair_support, margin) with the pair's support of A - B in A's frame.
+template <class Fn>
+auto with_pair(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Fn&& fn) {
+    const CoreOf ca = classify(a), cb = classify(b);
+    // B's frame in A's: x -> Ra^T Rb x + Ra^T (tb - ta). The translation difference is taken
+    // before rotating, so shapes far from the world origin keep their relative precision.
+    const Mat3 r = transpose(pose_a.rotation) * pose_b.rotation;
+    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    const double margin = ca.radius + cb.radius;
+    return with_support(a, ca.core, [&](auto sa) {
+        return with_support(b, cb.core, [&](auto sb) {
+            return fn(PairSupport<decltype(sa), decltype(sb)>{sa, sb, r, t}, margin);
+        });
+    });
+}
+
+Vec3 world_direction(const Pose& pose, Vec3 local) { return pose.rotation * local; }
+
+}  // namespace
+
+DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
+                            uint32_t max_iterations) {
+    if (max_iterations == 0) max_iterations = 1;
+    double radius_a = 0, radius_b = 0;
+    {
+        const CoreOf ca = classify(a), cb = classify(b);
+        radius_a = ca.radius;
+        radius_b = cb.radius;
+    }
+    Vec3 center_offset;
+    const LocalDistance l = with_pair(a, pose_a, b, pose_b, [&](const auto& pair, double margin) {
+        center_offset = pair.t;
+        return distance_loop(pair, margin, tolerance, max_iterations);
+    });
+
+    DistanceResult r;
+    r.iterations = l.iterations;
+    r.termination = l.termination;
+    r.intersecting = l.intersecting;
+    // Axis from A toward B: -v (v = a - b). Without a usable v (intersecting at the origin), the
+    // direction between the local origins, or +x.
+    const Vec3 fallback = normalized_or(center_offset, {1, 0, 0});
+    const Vec3 n = normalized_or(-l.v, fallback);
+    Vec3 pa = l.point_a, pb = l.point_b;
+    if (l.intersecting) {
+        r.distance = 0;
+        // One contact point, inside both shapes: on the cores' closest points moved onto the overlap.
+        Vec3 p = pa;
+        if (radius_a + radius_b > 0) {
+            const double core = std::sqrt(l.core_norm_sq);
+            // The point between the cores' closest points that splits their gap in the ratio of the radii.
+            p = (radius_a + radius_b) > 0 ? pa + ((core * radius_a / (radius_a + radius_b)) * n) : pa;
+        }
+        pa = pb = p;
+    } else {
+        r.distance = std::sqrt(l.core_norm_sq) - (radius_a + radius_b);
+        if (!(r.distance > 0)) r.distance = 0;
+        pa = pa + radius_a * n;
+        pb = pb - radius_b * n;
+    }
+    r.point_a = pose_a.apply(pa);
+    r.point_b = pose_a.apply(pb);
+    r.axis = world_direction(pose_a, n);
+    return r;
+}
+
+bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Vec3& io_axis,
+                   uint32_t* out_iterations) {
+    uint32_t it = 0;
+    Vec3 v_local = -pose_a.to_local_direction(io_axis);
+    const bool usable = is_finite(v_local) && dot(v_local, v_local) > 0 && std::isfinite(dot(v_local, v_local));
+    bool hit = with_pair(a, pose_a, b, pose_b, [&](const auto& pair, double margin) {
+        if (!usable) {
+            v_local = -pair.t;
+            if (!(dot(v_local, v_local) > 0)) v_local = {1, 0, 0};
+        }
+        return intersect_loop(pair, margin, v_local, 256, it);
+    });
+    if (!hit) io_axis = world_direction(pose_a, normalized_or(-v_local, {1, 0, 0}));
+    if (out_iterations) *out_iterations = it;
+    return hit;
+}
+
+}  // namespace kairos

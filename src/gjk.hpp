@@ -1,0 +1,276 @@
+// GJK on the configuration-space obstacle A - B with Johnson's sub-algorithm: distance, closest
+// points and the boolean intersection test with a cached separating axis.
+//
+// Source: Gilbert, Johnson, Keerthi, "A fast procedure for computing the distance between complex
+// objects in three-dimensional space" (1988), and van den Bergen's talks on GJK (ALGORITHMS.md §2):
+// determinants cached per subset bit mask, the seven termination rules, the separating-axis early
+// out of the intersection test.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "math.hpp"
+#include "shape.hpp"
+
+namespace kairos {
+
+// Which rule ended an iteration. Values equal the public KAIROS_TERMINATION_* (checked at the C
+// boundary), so they are never renumbered.
+enum class Termination : int32_t {
+    None = 0,
+    RelativeError = 1,    // ||v||^2 - v.w <= tolerance * ||v||^2: distance within the tolerance
+    NearContact = 2,      // ||v||^2 <= kNearContact * max ||y||^2: touching within rounding
+    FullSimplex = 3,      // the simplex holds the origin (or, for rounded shapes, the cores are
+                          // closer than the sum of the radii): the shapes intersect
+    JohnsonFailed = 4,    // no valid sub-simplex, and the backup pass did not improve: last estimate
+    RepeatedSupport = 5,  // the support point was already a simplex vertex (or a discarded one)
+    NoProgress = 6,       // ||v||^2 decreased by no more than machine epsilon (relative)
+    MaxIterations = 7,    // the iteration guard
+    Separated = 8,        // intersection test: a separating axis was found
+    Hit = 9,              // casts only
+};
+
+// Result of gjk_distance. Points and axis are in the world frame.
+struct DistanceResult {
+    double distance = 0;      // >= 0; 0 when intersecting (or touching within rounding)
+    Vec3 point_a, point_b;    // closest points on A and on B (equal when intersecting)
+    Vec3 axis;                // unit, from A toward B; a separating axis when apart
+    bool intersecting = false;
+    uint32_t iterations = 0;  // support evaluations of A - B
+    Termination termination = Termination::None;
+};
+
+// Distance between a at pose_a and b at pose_b. tolerance: relative error of the distance, in
+// (0, 1). max_iterations >= 1 is a guard only. Any finite input terminates within max_iterations
+// support evaluations and gives finite outputs.
+DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
+                            uint32_t max_iterations);
+
+// True when a at pose_a and b at pose_b overlap or touch (within rounding). io_axis (world frame,
+// from A toward B, any length) seeds the search; a zero or non-finite axis means a fresh start.
+// When a separating axis is found it is written to io_axis (unit length); otherwise io_axis is
+// left as it was. out_iterations (may be null) receives the number of support evaluations.
+bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Vec3& io_axis,
+                   uint32_t* out_iterations);
+
+namespace gjk_detail {
+
+// Threshold of rule 2 (near contact), relative to the largest squared simplex vertex norm:
+// ||v|| <= 64 ulp of the simplex's size, where v carries no significant digit any more.
+inline constexpr double kNearContact = (64 * 2.220446049250313e-16) * (64 * 2.220446049250313e-16);
+// Threshold of rule 6 (no progress): the type's machine epsilon.
+inline constexpr double kNoProgress = 2.220446049250313e-16;
+
+// Subsets of a 4-bit mask ordered by size (smallest first), the empty set included; built at
+// compile time. Johnson's test is tried on smaller sub-simplices first, and determinants of a
+// subset are computed after those of its own subsets.
+struct SubsetTable {
+    uint8_t subsets[16][16] = {};
+    uint8_t count[16] = {};
+    constexpr SubsetTable() {
+        for (unsigned m = 0; m < 16; ++m) {
+            unsigned n = 0;
+            for (int size = 0; size <= 4; ++size)
+                for (unsigned s = 0; s < 16; ++s)
+                    if ((s & ~m) == 0 && std::popcount(s) == size) subsets[m][n++] = static_cast<uint8_t>(s);
+            count[m] = static_cast<uint8_t>(n);
+        }
+    }
+};
+inline constexpr SubsetTable kSubsets{};
+
+// The simplex of GJK: up to four points y_i of A - B with their support points on A and B, the
+// dot products y_i.y_j and Johnson's determinants Delta_i(X) for every subset X (bit mask) of the
+// points present. A slot's entries stay valid while its point stays in the simplex, so adding a
+// point computes only the subsets that contain it.
+struct Simplex {
+    Vec3 y[4], pa[4], pb[4];
+    double dp[4][4];
+    double det[16][4];
+    double lambda[4];       // barycentric coordinates of v over `bits`
+    unsigned bits = 0;      // current simplex
+    unsigned last_all = 0;  // the points of the last add (current simplex and the ones it dropped)
+    Vec3 v;                 // closest point of the current simplex to the origin
+
+    // True when w equals a point of the last simplex before reduction (rule 5). Any such point y
+    // has v.y >= ||v||^2 in exact arithmetic, so rule 1 would have fired: w comes back by rounding
+    // only, and adding it again would cycle. (Points dropped earlier may legitimately return.)
+    bool contains(Vec3 w) const {
+        for (unsigned r = last_all; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            if (y[i] == w) return true;
+        }
+        return false;
+    }
+
+    double max_norm_sq() const {
+        double m = 0;
+        for (unsigned r = bits; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            m = dp[i][i] > m ? dp[i][i] : m;
+        }
+        return m;
+    }
+
+    // Writes v and lambda from the determinants of subset s.
+    void set_from_subset(unsigned s) {
+        double sum = 0;
+        for (unsigned r = s; r; r &= r - 1) sum += det[s][std::countr_zero(r)];
+        Vec3 p{};
+        for (unsigned r = s; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            lambda[i] = det[s][i] / sum;
+            p += lambda[i] * y[i];
+        }
+        bits = s;
+        v = p;
+        if (std::popcount(s) == 3) {
+            // The closest point lies inside the triangle: project the origin on its plane. The
+            // barycentric sum carries an absolute error of about eps * ||y||, which turns v's
+            // direction at random when ||v|| << ||y|| (nearly touching parallel faces); the plane
+            // normal from edge vectors keeps the direction to a few eps, so v.w keeps its sign.
+            const int i = std::countr_zero(s), j = std::countr_zero(s & (s - 1)), k = 31 - std::countl_zero(s);
+            const Vec3 n = cross(y[j] - y[i], y[k] - y[i]);
+            const double nn = dot(n, n);
+            if (nn > 0 && std::isfinite(nn)) v = (dot(n, y[i]) / nn) * n;
+        }
+    }
+
+    // Closest points on A and B (A's frame) from the barycentric coordinates of v.
+    void closest_points(Vec3& out_a, Vec3& out_b) const {
+        Vec3 a{}, b{};
+        for (unsigned r = bits; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            a += lambda[i] * pa[i];
+            b += lambda[i] * pb[i];
+        }
+        out_a = a;
+        out_b = b;
+    }
+
+    enum class Outcome { Reduced, Full, Backup, Failed };
+
+    // Adds w (with its support points) and runs Johnson's sub-algorithm on the new simplex. On
+    // Reduced or Backup, v/lambda/bits describe the closest point of the kept sub-simplex; on Full
+    // the origin lies in the tetrahedron (lambda are its barycentric coordinates); on Failed
+    // nothing usable was found and the previous v/lambda/bits are kept. `prev_norm_sq` is
+    // ||v||^2 before the call: the backup pass must improve on it.
+    Outcome add(Vec3 w, Vec3 a, Vec3 b, double prev_norm_sq) {
+        const int last = std::countr_zero(~bits & 15u);
+        const unsigned last_bit = 1u << last;
+        y[last] = w;
+        pa[last] = a;
+        pb[last] = b;
+        for (unsigned r = bits; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            dp[i][last] = dp[last][i] = dot(y[i], w);
+        }
+        dp[last][last] = dot(w, w);
+
+        // Determinants of every subset holding the new point, smaller subsets first:
+        // Delta_m(S) = sum_{i in X} Delta_i(X) (y_i.y_k - y_i.y_m), X = S \ {m}, k = min X.
+        det[last_bit][last] = 1;
+        const unsigned old = bits;
+        const unsigned all = old | last_bit;
+        last_all = all;
+        const unsigned n_sub = kSubsets.count[old];
+        for (unsigned t = 1; t < n_sub; ++t) {
+            const unsigned s = kSubsets.subsets[old][t] | last_bit;
+            for (unsigned r = s; r; r &= r - 1) {
+                const int m = std::countr_zero(r);
+                const unsigned x = s & ~(1u << m);
+                const int k = std::countr_zero(x);
+                double sum = 0;
+                for (unsigned q = x; q; q &= q - 1) {
+                    const int i = std::countr_zero(q);
+                    sum += det[x][i] * (dp[i][k] - dp[i][m]);
+                }
+                det[s][m] = sum;
+            }
+        }
+
+        // A full tetrahedron: decide by signed volumes (triple products of edge vectors) rather than
+        // by the dot-product determinants, which lose every digit on flat tetrahedra and would report
+        // an intersection for shapes some distance apart.
+        if (all == 15u && origin_in_tetrahedron()) {
+            bits = 15u;
+            v = Vec3{};
+            return Outcome::Full;
+        }
+
+        // Johnson's test: the closest sub-simplex holds the new point, has positive determinants,
+        // and every point left out has a non-positive determinant in the subset grown by it.
+        // Comparisons are written so that NaN fails them.
+        for (unsigned t = 0; t < n_sub; ++t) {
+            const unsigned s = kSubsets.subsets[old][t] | last_bit;
+            if (s == 15u) continue;  // decided geometrically above
+            if (valid(s, all)) {
+                set_from_subset(s);
+                return Outcome::Reduced;
+            }
+        }
+
+        // Backup: among all subsets with positive determinants (singletons always qualify), the one
+        // whose affine closest point is nearest the origin.
+        double best = prev_norm_sq;
+        unsigned best_s = 0;
+        for (unsigned s = 1; s < 15u; ++s) {
+            if ((s & ~all) != 0) continue;
+            bool positive = true;
+            double sum = 0;
+            for (unsigned r = s; r; r &= r - 1) {
+                const double d = det[s][std::countr_zero(r)];
+                if (!(d > 0)) positive = false;
+                sum += d;
+            }
+            if (!positive) continue;
+            Vec3 p{};
+            for (unsigned r = s; r; r &= r - 1) {
+                const int i = std::countr_zero(r);
+                p += (det[s][i] / sum) * y[i];
+            }
+            const double n2 = dot(p, p);
+            if (n2 < best) {
+                best = n2;
+                best_s = s;
+            }
+        }
+        if (best_s == 0) return Outcome::Failed;
+        set_from_subset(best_s);
+        return Outcome::Backup;
+    }
+
+    bool valid(unsigned s, unsigned all) const {
+        for (unsigned r = s; r; r &= r - 1)
+            if (!(det[s][std::countr_zero(r)] > 0)) return false;
+        for (unsigned r = all & ~s; r; r &= r - 1) {
+            const int j = std::countr_zero(r);
+            if (!(det[s | (1u << j)][j] <= 0)) return false;
+        }
+        return true;
+    }
+
+    // Barycentric coordinates of the origin in the tetrahedron y0..y3 by signed volumes; true when
+    // all are >= 0 (the origin inside or on the boundary) and the tetrahedron has volume.
+    bool origin_in_tetrahedron() {
+        const Vec3 e1 = y[1] - y[0], e2 = y[2] - y[0], e3 = y[3] - y[0];
+        const double vol = dot(e1, cross(e2, e3));
+        const double v1 = -dot(y[0], cross(e2, e3));
+        const double v2 = -dot(e1, cross(y[0], e3));
+        const double v3 = -dot(e1, cross(e2, y[0]));
+        const double v0 = dot(y[1], cross(y[2], y[3]));
+        if (!(vol != 0)) return false;
+        const double l0 = v0 / vol, l1 = v1 / vol, l2 = v2 / vol, l3 = v3 / vol;
+        if (!(l0 >= 0 && l1 >= 0 && l2 >= 0 && l3 >= 0)) return false;
+        const double sum = l0 + l1 + l2 + l3;
+        lambda[0] = l0 / sum;
+        lambda[1] = l1 / sum;
+        lambda[2] = l2 / sum;
+        lambda[3] = l3 / sum;
+        return true;
+    }
+};
+
+}  // namespace gjk_detail
+}  // namespace kairos

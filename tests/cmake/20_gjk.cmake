@@ -1,0 +1,2 @@
+# GJK core tests: closed forms, random polytopes against the long double oracle, hard cases.
+kairos_gtest(test_gjk SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk.cpp LIBS kairos_core)
