@@ -41,7 +41,7 @@ uint64_t pair_key(uint32_t a, uint32_t b) {
 // holds tombstones and allocates only when it grows.
 class PairSet {
 public:
-    static constexpr uint64_t kEmpty = ~uint64_t{0};  // never a key: ids are below 2^31
+    static constexpr uint64_t kEmpty = ~uint64_t{0};  // never a key: ids are below 2^30
 
     std::size_t size() const { return size_; }
 
@@ -116,7 +116,8 @@ private:
 
 // Binary min-heap of event slots with decrease- and increase-key: pos_ maps a slot to its place
 // in the heap. Keys are (time, rank, slot), a total order, so the order in which events are
-// taken does not depend on the order in which they were queued.
+// taken does not depend on the order in which they were queued. Keys sit in the heap entries
+// themselves, so a sift reads contiguous memory.
 class EventHeap {
 public:
     static constexpr uint32_t kNone = ~uint32_t{0};
@@ -124,102 +125,105 @@ public:
     // Only while empty.
     void resize_slots(std::size_t n) {
         pos_.assign(n, kNone);
-        time_.resize(n);
-        rank_.resize(n);
         heap_.reserve(n);
     }
 
     bool empty() const { return heap_.empty(); }
     std::size_t size() const { return heap_.size(); }
     bool queued(uint32_t slot) const { return pos_[slot] != kNone; }
-    double time(uint32_t slot) const { return time_[slot]; }
-    uint8_t rank(uint32_t slot) const { return rank_[slot]; }
+    // Only for a queued slot.
+    double time(uint32_t slot) const { return heap_[pos_[slot]].t; }
+    uint32_t rank(uint32_t slot) const { return heap_[pos_[slot]].rank; }
 
-    void push(uint32_t slot, double t, uint8_t rank) {
-        time_[slot] = t;
-        rank_[slot] = rank;
-        pos_[slot] = static_cast<uint32_t>(heap_.size());
-        heap_.push_back(slot);
-        sift_up(pos_[slot]);
+    void push(uint32_t slot, double t, uint32_t rank) {
+        heap_.push_back({t, slot, rank});
+        sift_up(static_cast<uint32_t>(heap_.size() - 1));
     }
 
-    void change(uint32_t slot, double t, uint8_t rank) {
-        const bool earlier = t < time_[slot] || (t == time_[slot] && rank < rank_[slot]);
-        time_[slot] = t;
-        rank_[slot] = rank;
+    void change(uint32_t slot, double t, uint32_t rank) {
+        const uint32_t i = pos_[slot];
+        const Entry e{t, slot, rank};
+        const bool earlier = less(e, heap_[i]);
+        heap_[i] = e;
         if (earlier) {
-            sift_up(pos_[slot]);
+            sift_up(i);
         } else {
-            sift_down(pos_[slot]);
+            sift_down(i);
         }
     }
 
     void remove(uint32_t slot) {
         const uint32_t i = pos_[slot];
         pos_[slot] = kNone;
-        const uint32_t last = heap_.back();
+        const Entry last = heap_.back();
         heap_.pop_back();
-        if (last == slot) return;
+        if (last.slot == slot) return;
         heap_[i] = last;
-        pos_[last] = i;
+        pos_[last.slot] = i;
         sift_up(i);
-        sift_down(pos_[last]);
+        sift_down(pos_[last.slot]);
     }
 
-    uint32_t pop() {
-        const uint32_t top = heap_.front();
-        remove(top);
-        return top;
+    // The earliest event: its slot and time.
+    uint32_t pop(double* out_t) {
+        const Entry top = heap_.front();
+        *out_t = top.t;
+        remove(top.slot);
+        return top.slot;
     }
 
 private:
-    bool less(uint32_t a, uint32_t b) const {
-        if (time_[a] != time_[b]) return time_[a] < time_[b];
-        if (rank_[a] != rank_[b]) return rank_[a] < rank_[b];
-        return a < b;
+    struct Entry {
+        double t;
+        uint32_t slot;
+        uint32_t rank;
+    };
+
+    static bool less(const Entry& a, const Entry& b) {
+        if (a.t != b.t) return a.t < b.t;
+        if (a.rank != b.rank) return a.rank < b.rank;
+        return a.slot < b.slot;
     }
 
-    void place(uint32_t i, uint32_t slot) {
-        heap_[i] = slot;
-        pos_[slot] = i;
+    void place(uint32_t i, const Entry& e) {
+        heap_[i] = e;
+        pos_[e.slot] = i;
     }
 
     void sift_up(uint32_t i) {
-        const uint32_t slot = heap_[i];
+        const Entry e = heap_[i];
         while (i > 0) {
             const uint32_t parent = (i - 1) / 2;
-            if (!less(slot, heap_[parent])) break;
+            if (!less(e, heap_[parent])) break;
             place(i, heap_[parent]);
             i = parent;
         }
-        place(i, slot);
+        place(i, e);
     }
 
     void sift_down(uint32_t i) {
-        const uint32_t slot = heap_[i];
+        const Entry e = heap_[i];
         const auto n = static_cast<uint32_t>(heap_.size());
         for (;;) {
             uint32_t child = 2 * i + 1;
             if (child >= n) break;
             if (child + 1 < n && less(heap_[child + 1], heap_[child])) ++child;
-            if (!less(heap_[child], slot)) break;
+            if (!less(heap_[child], e)) break;
             place(i, heap_[child]);
             i = child;
         }
-        place(i, slot);
+        place(i, e);
     }
 
-    std::vector<uint32_t> heap_;
+    std::vector<Entry> heap_;
     std::vector<uint32_t> pos_;
-    std::vector<double> time_;
-    std::vector<uint8_t> rank_;
 };
 
 // Event ranks at equal times: overlaps start before same-kind swaps, which come before overlaps
 // end, so that boxes touching on all axes for one instant are seen overlapping at that instant.
-constexpr uint8_t kRankStart = 0;
-constexpr uint8_t kRankSame = 1;
-constexpr uint8_t kRankEnd = 2;
+constexpr uint32_t kRankStart = 0;
+constexpr uint32_t kRankSame = 1;
+constexpr uint32_t kRankEnd = 2;
 
 // ---- Space-time sweep and prune --------------------------------------------------------------
 
@@ -231,14 +235,16 @@ public:
 
 private:
     // One interval endpoint: its coordinate at the start and at the end of the step (equal between
-    // steps) and tag = owner id << 1 | 1 for a max ("]"), 0 for a min ("[").
+    // steps) and tag = owner id << 2 | 2 if the owner is static | 1 for a max ("]"), 0 for a min
+    // ("["), so that a swap reads nothing else to know what it changes.
     struct Endpoint {
         double p0;
         double p1;
         uint32_t tag;
     };
-    static uint32_t owner(const Endpoint& e) { return e.tag >> 1; }
+    static uint32_t owner(const Endpoint& e) { return e.tag >> 2; }
     static bool is_max(const Endpoint& e) { return (e.tag & 1) != 0; }
+    static bool is_static(const Endpoint& e) { return (e.tag & 2) != 0; }
     // The order between steps: by position, then "[" before "]", so touching intervals overlap.
     static bool before(const Endpoint& a, const Endpoint& b) {
         return a.p0 < b.p0 || (a.p0 == b.p0 && (a.tag & 1) < (b.tag & 1));
@@ -330,7 +336,7 @@ void SpacetimeSap::on_flush() {
                 const bool mx = (s.flag_owner >> 31) != 0;
                 const Aabb& b = records_[id].box;
                 const double p = mx ? b.max[axis] : b.min[axis];
-                const Endpoint e{p, p, (id << 1) | (mx ? 1u : 0u)};
+                const Endpoint e{p, p, (id << 2) | (records_[id].is_static ? 2u : 0u) | (mx ? 1u : 0u)};
                 while (r < arr.size() && !before(e, arr[r])) merged_.push_back(arr[r++]);
                 merged_.push_back(e);
             }
@@ -388,7 +394,7 @@ void SpacetimeSap::swap_at(int axis, uint32_t i, double t, bool report) {
     ep(a, axis, is_max(left)) = i + 1;
     ep(b, axis, is_max(right)) = i;
     if (is_max(left) == is_max(right)) return;
-    if (both_static(a, b) || !overlap_on_other_axes(a, b, axis)) return;
+    if ((is_static(left) && is_static(right)) || !overlap_on_other_axes(a, b, axis)) return;
     if (is_max(left)) {
         overlaps_.insert(pair_key(a, b));
         if (report) pairs_.push_back({std::min(a, b), std::max(a, b), t});
@@ -421,7 +427,7 @@ void SpacetimeSap::update_slot(int axis, uint32_t i, double t_now) {
     // rounding left inconsistent (d0 <= 0) swaps at once; never before the current time.
     double t = d0 > 0 ? d0 / (d0 - d1) : t_now;
     t = std::max(t, t_now);
-    const uint8_t rank = start ? kRankStart : (is_max(l) == is_max(r) ? kRankSame : kRankEnd);
+    const uint32_t rank = start ? kRankStart : (is_max(l) == is_max(r) ? kRankSame : kRankEnd);
     if (heap_.queued(slot)) {
         if (heap_.time(slot) != t || heap_.rank(slot) != rank) {
             heap_.change(slot, t, rank);
@@ -458,9 +464,9 @@ void SpacetimeSap::on_step() {
         }
     }
     while (!heap_.empty()) {
-        const uint32_t slot = heap_.pop();
+        double t = 0;
+        const uint32_t slot = heap_.pop(&t);
         ++counters_.heap_pops;
-        const double t = heap_.time(slot);
         const int axis = static_cast<int>(slot / stride_);
         const uint32_t i = slot % stride_;
         swap_at(axis, i, t, true);

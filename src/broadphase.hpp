@@ -76,7 +76,7 @@ uint64_t ordered_key(double x);
 // A broad phase that persists between steps. Between steps: add, remove, teleport (a new box
 // without sweeping). For the coming step: move (the box at the end of the step); objects not
 // moved stay where they are. step() reports the pairs and moves every object to its end box.
-// Pairs of two static objects are never reported. Ids are caller-chosen indices < 2^31.
+// Pairs of two static objects are never reported. Ids are caller-chosen indices < 2^30.
 class BroadPhase {
 public:
     static std::unique_ptr<BroadPhase> create(BroadPhaseKind kind);
@@ -112,7 +112,7 @@ public:
     // empty string if it holds, otherwise a description of the first fault. O(n^2).
     virtual std::string check_invariants() const;
 
-    static constexpr uint32_t kMaxId = (1u << 31) - 1;
+    static constexpr uint32_t kMaxId = (1u << 30) - 1;
 
 protected:
     explicit BroadPhase(BroadPhaseKind kind) : kind_(kind) {}
