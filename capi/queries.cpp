@@ -1,8 +1,21 @@
 // C API pair queries: distance, intersection, ray cast, shape cast, motion cast.
 #include "boundary.hpp"
+#include "gjk.hpp"
 
 using namespace kairos;
 using namespace kairos::capi;
+
+// The core's termination codes are the public ones.
+static_assert(int32_t(Termination::None) == KAIROS_TERMINATION_NONE);
+static_assert(int32_t(Termination::RelativeError) == KAIROS_TERMINATION_RELATIVE_ERROR);
+static_assert(int32_t(Termination::NearContact) == KAIROS_TERMINATION_NEAR_CONTACT);
+static_assert(int32_t(Termination::FullSimplex) == KAIROS_TERMINATION_FULL_SIMPLEX);
+static_assert(int32_t(Termination::JohnsonFailed) == KAIROS_TERMINATION_JOHNSON_FAILED);
+static_assert(int32_t(Termination::RepeatedSupport) == KAIROS_TERMINATION_REPEATED_SUPPORT);
+static_assert(int32_t(Termination::NoProgress) == KAIROS_TERMINATION_NO_PROGRESS);
+static_assert(int32_t(Termination::MaxIterations) == KAIROS_TERMINATION_MAX_ITERATIONS);
+static_assert(int32_t(Termination::Separated) == KAIROS_TERMINATION_SEPARATED);
+static_assert(int32_t(Termination::Hit) == KAIROS_TERMINATION_HIT);
 
 extern "C" {
 
@@ -24,8 +37,17 @@ KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pos
         const BodyPose pb = read_pose(pose_b, fn, "pose_b");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        (void)pa, (void)pb, (void)qs;
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
+        const DistanceResult r =
+            gjk_distance(shape_of(a), pa.rigid(), shape_of(b), pb.rigid(), qs.tolerance, qs.max_iterations);
+        kairos_distance_result res;
+        res.distance = r.distance;
+        res.point_a = to_c(r.point_a);
+        res.point_b = to_c(r.point_b);
+        res.axis = to_c(r.axis);
+        res.intersecting = r.intersecting ? 1 : 0;
+        res.iterations = r.iterations;
+        res.termination = static_cast<int32_t>(r.termination);
+        *out = res;
     });
 }
 
@@ -42,8 +64,9 @@ KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* po
         Vec3 axis{};
         if (axis_cache != nullptr) axis = {axis_cache->x, axis_cache->y, axis_cache->z};
         if (!is_finite(axis)) axis = {};
-        (void)pa, (void)pb;
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
+        const bool hit = gjk_intersect(shape_of(a), pa.rigid(), shape_of(b), pb.rigid(), axis, nullptr);
+        *out = hit ? 1 : 0;
+        if (axis_cache != nullptr && !hit) *axis_cache = to_c(axis);
     });
 }
 
