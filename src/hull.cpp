@@ -183,7 +183,10 @@ constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
 struct Face {
     uint32_t v[3];    // counter-clockwise seen from outside
     uint32_t adj[3];  // adj[i]: the face across edge v[i] -> v[(i + 1) % 3]
-    std::vector<uint32_t> outside;  // points strictly above, not yet on the hull
+    // Rounded (b - a) x (c - a) and, per component, |u_j v_k| + |u_k v_j|: with them the
+    // orientation of q is normal . (q - a), and its error bound needs only |q - a|.
+    Vec3 normal, weight;
+    uint32_t outside = kNone;  // first of the points strictly above, not yet on the hull (list in next_)
     uint32_t farthest = kNone;
     double farthest_value = 0;
     bool alive = true;
@@ -191,7 +194,9 @@ struct Face {
 
 class Quickhull {
 public:
-    explicit Quickhull(const std::vector<Vec3>& p) : pts_(p), horizon_from_(p.size(), kNone) {}
+    explicit Quickhull(const std::vector<Vec3>& p) : pts_(p), next_(p.size(), kNone), horizon_from_(p.size(), kNone) {
+        faces_.reserve(2 * p.size() + 8);  // a hull of n points has at most 2n - 4 faces
+    }
 
     // Builds the hull of the points `ids` starting from the tetrahedron t (orient(t) < 0).
     void build(const std::vector<uint32_t>& ids, const std::array<uint32_t, 4>& t) {
@@ -204,12 +209,12 @@ public:
             if (i != t[0] && i != t[1] && i != t[2] && i != t[3]) candidates.push_back(i);
         distribute(candidates, 0, 4);
         for (uint32_t i = 0; i < 4; ++i)
-            if (!faces_[i].outside.empty()) pending_.push_back(i);
+            if (faces_[i].outside != kNone) pending_.push_back(i);
 
         while (!pending_.empty()) {
             const uint32_t fi = pending_.back();
             pending_.pop_back();
-            if (!faces_[fi].alive || faces_[fi].outside.empty()) continue;
+            if (!faces_[fi].alive || faces_[fi].outside == kNone) continue;
             add_point(fi, faces_[fi].farthest);
         }
     }
@@ -230,8 +235,12 @@ private:
         f.v[0] = a;
         f.v[1] = b;
         f.v[2] = c;
+        const Vec3 u = pts_[b] - pts_[a], v = pts_[c] - pts_[a];
+        f.normal = cross(u, v);
+        f.weight = {std::fabs(u.y * v.z) + std::fabs(u.z * v.y), std::fabs(u.z * v.x) + std::fabs(u.x * v.z),
+                    std::fabs(u.x * v.y) + std::fabs(u.y * v.x)};
         f.adj[0] = f.adj[1] = f.adj[2] = kNone;
-        f.outside.clear();
+        f.outside = kNone;
         f.farthest = kNone;
         f.farthest_value = 0;
         f.alive = true;
@@ -249,7 +258,21 @@ private:
             }
     }
 
-    Orientation side(const Face& f, uint32_t q) const { return orient(pts_[f.v[0]], pts_[f.v[1]], pts_[f.v[2]], pts_[q]); }
+    // orient(face, q) from the face's cached normal. The rounding error of the normal is at most
+    // ~4 eps * weight per component and the dot product adds ~4 eps * weight . |w|, so
+    // 4e-15 * weight . |w| (about 18 eps) bounds the error; below 1e-280 underflow could matter.
+    Orientation side(const Face& f, uint32_t q) const {
+        const Vec3 a = pts_[f.v[0]];
+        const Vec3 w = pts_[q] - a;
+        const double det = dot(f.normal, w);
+        const double permanent = f.weight.x * std::fabs(w.x) + f.weight.y * std::fabs(w.y) + f.weight.z * std::fabs(w.z);
+        if (permanent > 1e-280) {
+            const double bound = 4e-15 * permanent;
+            if (det > bound) return {det, 1};
+            if (det < -bound) return {det, -1};
+        }
+        return {det, orient_exact(a, pts_[f.v[1]], pts_[f.v[2]], pts_[q])};
+    }
 
     // Gives each point to the first face among [first_face .. first_face + n_faces) of
     // `face_list` (or of the range, when face_list is null) that it is strictly above.
@@ -261,7 +284,8 @@ private:
                 Face& f = faces_[fi];
                 const Orientation o = side(f, q);
                 if (o.sign > 0) {
-                    f.outside.push_back(q);
+                    next_[q] = f.outside;
+                    f.outside = q;
                     // The determinant is the distance times a per-face constant.
                     if (f.farthest == kNone || o.value > f.farthest_value) {
                         f.farthest = q;
@@ -303,9 +327,9 @@ private:
         orphans_.clear();
         for (uint32_t fi : visible_) {
             Face& f = faces_[fi];
-            for (uint32_t q : f.outside)
+            for (uint32_t q = f.outside; q != kNone; q = next_[q])
                 if (q != p) orphans_.push_back(q);
-            f.outside.clear();
+            f.outside = kNone;
             f.alive = false;
         }
         for (uint32_t fi : visible_) free_.push_back(fi);
@@ -334,7 +358,7 @@ private:
 
         distribute(orphans_, 0, static_cast<uint32_t>(m), &new_faces_);
         for (uint32_t fi : new_faces_)
-            if (!faces_[fi].outside.empty()) pending_.push_back(fi);
+            if (faces_[fi].outside != kNone) pending_.push_back(fi);
     }
 
     void mark(uint32_t fi, int visible) {
@@ -354,6 +378,7 @@ private:
 
     const std::vector<Vec3>& pts_;
     std::vector<Face> faces_;
+    std::vector<uint32_t> next_;  // per point: the next point of the same conflict list
     std::vector<uint32_t> free_, pending_, visible_, orphans_, new_faces_;
     std::vector<HorizonEdge> horizon_;
     std::vector<uint32_t> horizon_from_;  // per point: index of the horizon edge leaving it
@@ -500,21 +525,22 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     }
     if (hull_vertices.size() > ConvexHullShape::kHillClimbThreshold) {
         // Edge graph in compressed rows, neighbours of each vertex in increasing order.
-        std::vector<std::pair<uint32_t, uint32_t>> directed;
-        directed.reserve(2 * edges.size());
-        for (const auto& [a, b] : edges) {
-            directed.emplace_back(index_of[a], index_of[b]);
-            directed.emplace_back(index_of[b], index_of[a]);
-        }
-        std::sort(directed.begin(), directed.end());
         const size_t nv = hull_vertices.size();
-        shape->neighbor_offsets.assign(nv + 1, 0);
-        shape->neighbors.reserve(directed.size());
-        for (const auto& [from, to] : directed) {
-            ++shape->neighbor_offsets[from + 1];
-            shape->neighbors.push_back(to);
+        auto& offsets = shape->neighbor_offsets;
+        auto& adjacent = shape->neighbors;
+        offsets.assign(nv + 1, 0);
+        for (const auto& [a, b] : edges) {
+            ++offsets[index_of[a] + 1];
+            ++offsets[index_of[b] + 1];
         }
-        for (size_t i = 0; i < nv; ++i) shape->neighbor_offsets[i + 1] += shape->neighbor_offsets[i];
+        for (size_t i = 0; i < nv; ++i) offsets[i + 1] += offsets[i];
+        adjacent.resize(offsets[nv]);
+        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+        for (const auto& [a, b] : edges) {
+            adjacent[fill[index_of[a]]++] = index_of[b];
+            adjacent[fill[index_of[b]]++] = index_of[a];
+        }
+        for (size_t i = 0; i < nv; ++i) std::sort(adjacent.begin() + offsets[i], adjacent.begin() + offsets[i + 1]);
     }
     *out_shape = shape.release();
     return HullStatus::Ok;
