@@ -164,11 +164,25 @@ public:
         sift_down(pos_[last.slot]);
     }
 
-    // The earliest event: its slot and time.
+    // The earliest event: its slot and time. Floyd's variant: the hole at the top goes down to a
+    // leaf along the smaller children (one comparison per level), then the last entry fills it
+    // and rises, usually by a level or two.
     uint32_t pop(double* out_t) {
         const Entry top = heap_.front();
         *out_t = top.t;
-        remove(top.slot);
+        pos_[top.slot] = kNone;
+        const Entry last = heap_.back();
+        heap_.pop_back();
+        const auto n = static_cast<uint32_t>(heap_.size());
+        if (n == 0) return top.slot;
+        uint32_t i = 0;
+        for (uint32_t child = 1; child < n; child = 2 * i + 1) {
+            if (child + 1 < n) child += less(heap_[child + 1], heap_[child]) ? 1 : 0;
+            place(i, heap_[child]);
+            i = child;
+        }
+        heap_[i] = last;
+        sift_up(i);
         return top.slot;
     }
 
@@ -281,7 +295,6 @@ private:
     std::vector<std::array<uint32_t, 6>> ep_;  // by id: index of [min, max] on x, y, z
     PairSet overlaps_;                         // pairs overlapping now, not both static
     EventHeap heap_;
-    uint32_t stride_ = 0;  // slot id = axis * stride_ + left index; stride_ = 2 * objects
     // Scratch buffers kept between flushes.
     std::vector<SortItem> sort_items_;
     std::vector<Endpoint> merged_;
@@ -378,8 +391,8 @@ void SpacetimeSap::on_flush() {
         }
     }
 
-    stride_ = static_cast<uint32_t>(axes_[0].size());
-    heap_.resize_slots(3 * static_cast<std::size_t>(stride_));
+    // Slot of the adjacent endpoints at i and i + 1 of an axis: 4 * i + axis.
+    heap_.resize_slots(4 * axes_[0].size());
 }
 
 // Swaps the endpoints at i and i + 1 of an axis and keeps the overlap set: "][" -> "[]" starts an
@@ -407,7 +420,7 @@ void SpacetimeSap::swap_at(int axis, uint32_t i, double t, bool report) {
 void SpacetimeSap::update_slot(int axis, uint32_t i, double t_now) {
     const auto& arr = axes_[static_cast<std::size_t>(axis)];
     if (i + 1 >= arr.size()) return;
-    const uint32_t slot = static_cast<uint32_t>(axis) * stride_ + i;
+    const uint32_t slot = 4 * i + static_cast<uint32_t>(axis);
     const Endpoint& l = arr[i];
     const Endpoint& r = arr[i + 1];
     const bool start = is_max(l) && !is_max(r);
@@ -467,8 +480,8 @@ void SpacetimeSap::on_step() {
         double t = 0;
         const uint32_t slot = heap_.pop(&t);
         ++counters_.heap_pops;
-        const int axis = static_cast<int>(slot / stride_);
-        const uint32_t i = slot % stride_;
+        const int axis = static_cast<int>(slot & 3);
+        const uint32_t i = slot >> 2;
         swap_at(axis, i, t, true);
         ++counters_.swaps;
         if (i > 0) update_slot(axis, i - 1, t);
@@ -709,7 +722,7 @@ bool BroadPhase::contains(uint32_t id) const {
 const Aabb* BroadPhase::box(uint32_t id) const { return contains(id) ? &records_[id].box : nullptr; }
 
 bool BroadPhase::add(uint32_t id, const Aabb& box, bool is_static) {
-    if (id > kMaxId || !valid_box(box) || contains(id)) return false;
+    if (id > kMaxId || !valid_box(box) || contains(id) || live_count_ >= kMaxObjects) return false;
     if (id >= records_.size()) records_.resize(static_cast<std::size_t>(id) + 1);
     if (records_[id].state == State::PendingRemove) flush();  // the old object must leave first
     Record& r = records_[id];

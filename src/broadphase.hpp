@@ -86,9 +86,10 @@ public:
 
     BroadPhaseKind kind() const { return kind_; }
 
-    // Each returns false, changing nothing, on an id out of range or already used (add), an id
-    // not present (the others), a box with NaN, infinity or min > max, or a move of a static
-    // object. Adds are inserted in bulk (one sort) at the next step or flush().
+    // Each returns false, changing nothing, on an id out of range or already used, or with
+    // kMaxObjects present (add), an id not present (the others), a box with NaN, infinity or
+    // min > max, or a move of a static object. Adds are inserted in bulk (one sort) at the next
+    // step or flush().
     bool add(uint32_t id, const Aabb& box, bool is_static);
     bool remove(uint32_t id);
     // Sets the box at once, with no sweep between the old and the new one; cancels a move.
@@ -113,6 +114,7 @@ public:
     virtual std::string check_invariants() const;
 
     static constexpr uint32_t kMaxId = (1u << 30) - 1;
+    static constexpr std::size_t kMaxObjects = std::size_t{1} << 28;  // event slots fit 32 bits
 
 protected:
     explicit BroadPhase(BroadPhaseKind kind) : kind_(kind) {}
