@@ -156,6 +156,14 @@ inline Vec3 support(const Shape& s, Vec3 d) {
             return static_cast<const ConvexHullShape&>(s).support(d);
         case ShapeKind::Transformed: {
             const auto& t = static_cast<const TransformedShape&>(s);
+            // A huge d through a large linear part would overflow to inf (a NaN point), a tiny
+            // one through a small part underflow to zero: rescale such d by a power of two
+            // (exact, and a support depends only on the direction).
+            const double m = max_abs(d);
+            if (m > 0x1p+500 || (m < 0x1p-500 && m > 0)) {
+                const int e = std::ilogb(m);
+                d = {std::ldexp(d.x, -e), std::ldexp(d.y, -e), std::ldexp(d.z, -e)};
+            }
             return t.linear * support(*t.child, mul_transpose(t.linear, d)) + t.translation;
         }
         case ShapeKind::MinkowskiSum: {

@@ -467,6 +467,35 @@ TEST(ShapeSupport, ZeroTinyAndHugeDirectionsGiveAPointOfTheShape) {
     }
 }
 
+// A huge direction through a large linear part must not overflow to inf (and a NaN point), nor
+// a tiny one through a small linear part underflow to the zero direction.
+TEST(ShapeSupport, ExtremeDirectionsThroughLargeAndSmallTransforms) {
+    const Shape* sphere = new SphereShape(1.0);
+    const Shape* box = new BoxShape({1, 2, 3});
+    Rng rng(kSeed + 5);
+    for (double scale : {1e12, 1e-12}) {
+        Mat3 linear = random_rotation(rng);
+        for (auto& row : linear.r) row = scale * row;
+        for (const Shape* child : {sphere, box}) {
+            const Shape* t = new TransformedShape(*child, linear, {1, 2, 3});
+            for (int k = 0; k < 50; ++k) {
+                const Vec3 u = random_unit(rng);
+                for (double magnitude : {1e-300, 1.0, 1e300}) {
+                    SCOPED_TRACE("seed " + std::to_string(kSeed + 5) + ", linear scale " + std::to_string(std::log10(scale)) +
+                                 ", direction " + std::to_string(k) + " times 1e" + std::to_string(std::log10(magnitude)));
+                    const Vec3 s = support(*t, magnitude * u);
+                    ASSERT_TRUE(is_finite(s));
+                    const double tol = 64 * kEps * (radius_bound(*t) + 1);
+                    ASSERT_NEAR(dot(u, s), h_closed(*t, u), tol);
+                }
+            }
+            t->release();
+        }
+    }
+    sphere->release();
+    box->release();
+}
+
 TEST(ShapeSupport, WorldSupportAppliesThePose) {
     Zoo zoo;
     Rng rng(kSeed + 2);
