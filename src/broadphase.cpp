@@ -467,12 +467,20 @@ void SpacetimeSap::on_step() {
         }
     }
     // Only slots next to a moving endpoint can hold an event: static objects cost nothing here.
-    for (uint32_t id : moving_) {
+    // When most objects move, one pass along each array reads memory in order instead.
+    if (4 * moving_.size() >= axes_[0].size()) {
         for (int axis = 0; axis < 3; ++axis) {
-            for (bool mx : {false, true}) {
-                const uint32_t i = ep(id, axis, mx);
-                if (i > 0) update_slot(axis, i - 1, 0.0);
-                update_slot(axis, i, 0.0);
+            const auto n = static_cast<uint32_t>(axes_[static_cast<std::size_t>(axis)].size());
+            for (uint32_t i = 0; i + 1 < n; ++i) update_slot(axis, i, 0.0);
+        }
+    } else {
+        for (uint32_t id : moving_) {
+            for (int axis = 0; axis < 3; ++axis) {
+                for (bool mx : {false, true}) {
+                    const uint32_t i = ep(id, axis, mx);
+                    if (i > 0) update_slot(axis, i - 1, 0.0);
+                    update_slot(axis, i, 0.0);
+                }
             }
         }
     }
