@@ -420,23 +420,39 @@ TEST(BroadPhase, StaticObjectsCostNothing) {
 }
 
 // Coordinates on a grid of halves and velocities in quarters: many endpoints coincide, and many
-// pairs start or stop overlapping at the same instant, some only for that instant.
+// pairs start or stop overlapping at the same instant, some only for that instant. Halfway, more
+// such boxes are inserted in bulk among equal endpoints, and some are teleported onto the grid.
+Body grid_body(Rng& rng, int i) {
+    Body b;
+    b.box.min = {0.5 * rng.below(16), 0.5 * rng.below(16), 0.5 * rng.below(16)};
+    // Widths 0 (a flat box), 0.5, 1 or 1.5.
+    b.box.max = b.box.min + Vec3{0.5 * rng.below(4), 0.5 * rng.below(4), 0.5 * rng.below(4)};
+    auto quarter = [&] { return 0.25 * (static_cast<double>(rng.below(9)) - 4); };
+    b.velocity = {quarter(), quarter(), quarter()};
+    if (i % 5 == 0) b.velocity = {0, 0, 0};
+    b.is_static = i % 11 == 0;
+    return b;
+}
+
 TEST(BroadPhase, ExactTiesMatchBruteForce) {
     for (uint64_t seed : {61u, 62u, 63u}) {
         Rng rng(seed);
         Harness h(seed);
-        for (int i = 0; i < 250; ++i) {
-            Body b;
-            b.box.min = {0.5 * rng.below(16), 0.5 * rng.below(16), 0.5 * rng.below(16)};
-            // Widths 0 (a flat box), 0.5, 1 or 1.5.
-            b.box.max = b.box.min + Vec3{0.5 * rng.below(4), 0.5 * rng.below(4), 0.5 * rng.below(4)};
-            b.velocity = {0.25 * (static_cast<double>(rng.below(9)) - 4), 0.25 * (static_cast<double>(rng.below(9)) - 4),
-                          0.25 * (static_cast<double>(rng.below(9)) - 4)};
-            if (i % 5 == 0) b.velocity = {0, 0, 0};
-            b.is_static = i % 11 == 0;
-            h.add(b);
+        for (int i = 0; i < 250; ++i) h.add(grid_body(rng, i));
+        for (int s = 0; s < 3; ++s) ASSERT_TRUE(h.step()) << "seed " << seed;
+        // Back onto the grid, then more of the same, then teleports onto the grid.
+        for (uint32_t id = 0; id < h.bodies().size(); ++id) {
+            if (!h.bodies()[id].is_static) h.teleport(id, grid_body(rng, 1).box);
         }
-        for (int s = 0; s < 6; ++s) ASSERT_TRUE(h.step()) << "seed " << seed;
+        h.check();
+        for (int i = 0; i < 80; ++i) h.add(grid_body(rng, i));
+        h.check();
+        for (uint32_t id = 0; id < h.bodies().size(); id += 7) h.remove(id);
+        for (uint32_t id = 3; id < h.bodies().size(); id += 5) {
+            if (h.bodies()[id].alive) h.teleport(id, grid_body(rng, 1).box);
+        }
+        h.check();
+        for (int s = 0; s < 3; ++s) ASSERT_TRUE(h.step()) << "seed " << seed;
         report("ties", h);
         EXPECT_GT(h.pairs_per_object(), 1.0) << "seed " << seed;
         EXPECT_LT(h.pairs_per_object(), 50.0) << "seed " << seed;
