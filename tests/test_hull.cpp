@@ -247,6 +247,50 @@ TEST(HullBruteForce, CubeWithPointsOnFacesAndEdges) {
     }
 }
 
+TEST(HullBruteForce, ManySmallDegenerateLatticeSets) {
+    // Subsets of tiny lattices: nearly every set is full of coplanar and collinear points, and
+    // some are flat or straight. The hull is an error exactly when brute force finds no vertex.
+    Rng rng(kSeed + 350);
+    for (int trial = 0; trial < 300; ++trial) {
+        SCOPED_TRACE("seed " + std::to_string(kSeed + 350) + ", trial " + std::to_string(trial));
+        const int n = static_cast<int>(uniform_int(rng, 4, 24));
+        const int64_t zmax = trial % 3 == 0 ? 0 : 1;  // every third set is flat
+        std::vector<IPoint> pts;
+        for (int i = 0; i < n; ++i) pts.push_back({uniform_int(rng, -1, 1), uniform_int(rng, -1, 1), uniform_int(rng, 0, zmax)});
+        const std::vector<Vec3> inputs = to_vecs(pts, 0.75);
+        HullHolder hull(inputs);
+        const std::vector<IPoint> expected_ints = brute_force_vertices(pts);
+        if (expected_ints.empty()) {
+            EXPECT_TRUE(hull.status == HullStatus::Coplanar || hull.status == HullStatus::Collinear);
+            continue;
+        }
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        ASSERT_EQ(sorted(hull.shape->vertices), sorted(to_vecs(expected_ints, 0.75)));
+        expect_supports_match(*hull.shape, inputs, rng, 20);
+        if (HasFatalFailure()) return;
+    }
+}
+
+TEST(HullClosedForm, RotatedCubeSurfaceSupports) {
+    // On a rotated cube the face points are off their planes by rounding, so which of them are
+    // exact vertices is not known in closed form; the support still is, and the 8 corners stay.
+    Rng rng(kSeed + 450);
+    Quat q{0.3, -0.5, 0.2, 0.7};
+    const Mat3 rot = to_matrix(normalized(q));
+    std::vector<Vec3> pts, corners;
+    for (int c = 0; c < 8; ++c) corners.push_back(rot * Vec3{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+    pts = corners;
+    for (int i = 0; i < 2000; ++i) {
+        Vec3 x{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
+        x[static_cast<int>(uniform_int(rng, 0, 2))] = uniform_int(rng, 0, 1) ? 1.0 : -1.0;
+        pts.push_back(rot * x);
+    }
+    HullHolder hull(pts);
+    ASSERT_EQ(hull.status, HullStatus::Ok);
+    for (const Vec3& c : corners) EXPECT_NE(std::find(hull.shape->vertices.begin(), hull.shape->vertices.end(), c), hull.shape->vertices.end());
+    expect_supports_match(*hull.shape, pts, rng, 2000);
+}
+
 TEST(HullClosedForm, FullGridAndOctahedron) {
     std::vector<Vec3> grid, octahedron;
     for (int x = -3; x <= 3; ++x)
@@ -348,6 +392,46 @@ TEST(HullClimb, PrismWithFlatFacesAndPointsOnEdges) {
         if (k % 4 == 1) d = {0, 0, k % 8 == 1 ? 1.0 : -1.0};
         if (k % 4 == 2) d.z = 0;
         ASSERT_NEAR(dot(d, hull.shape->support(d)), max_dot(pts, d), 8 * kEps * 2) << "direction #" << k;
+    }
+}
+
+TEST(HullClimb, GraphOnlyAboveTheThreshold) {
+    Rng rng(kSeed + 750);
+    for (size_t n : {ConvexHullShape::kHillClimbThreshold, ConvexHullShape::kHillClimbThreshold + 1}) {
+        SCOPED_TRACE("seed " + std::to_string(kSeed + 750) + ", " + std::to_string(n) + " points on a sphere");
+        std::vector<Vec3> pts;
+        for (size_t i = 0; i < n; ++i) pts.push_back(random_unit(rng));
+        HullHolder hull(pts);
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        ASSERT_EQ(hull.shape->vertices.size(), n);
+        if (n <= ConvexHullShape::kHillClimbThreshold) {
+            EXPECT_TRUE(hull.shape->neighbor_offsets.empty());
+            EXPECT_TRUE(hull.shape->neighbors.empty());
+        } else {
+            EXPECT_EQ(hull.shape->neighbor_offsets.size(), n + 1);
+            EXPECT_EQ(hull.shape->neighbors.size(), 2 * (3 * n - 6));
+        }
+        expect_supports_match(*hull.shape, pts, rng, 500);
+    }
+}
+
+TEST(HullRange, LargestAndSubnormalCoordinates) {
+    // A cube with a point in each face centre, at the top and the bottom of the double range.
+    for (double h : {1e308, 0x1p-1060}) {
+        SCOPED_TRACE("half size " + std::to_string(std::log2(h)) + " (log2)");
+        std::vector<Vec3> pts, corners;
+        for (int c = 0; c < 8; ++c) corners.push_back({c & 1 ? h : -h, c & 2 ? h : -h, c & 4 ? h : -h});
+        pts = corners;
+        for (int a = 0; a < 3; ++a)
+            for (double s : {-h, h}) {
+                Vec3 f{};
+                f[a] = s;
+                pts.push_back(f);
+            }
+        pts.push_back({});
+        HullHolder hull(pts);
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        EXPECT_EQ(sorted(hull.shape->vertices), sorted(corners));
     }
 }
 

@@ -431,7 +431,7 @@ TEST(ShapeSupport, MatchesClosedFormAndBeatsSampledPoints) {
             SCOPED_TRACE("direction #" + std::to_string(k) + " = (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " +
                          std::to_string(d.z) + ")");
             const Vec3 s = support(*c.shape, d);
-            const double tol = 64 * kEps * length(d) * (radius + 1);
+            const double tol = 16 * kEps * length(d) * (radius + 1);
             ASSERT_TRUE(is_finite(s));
             ASSERT_NEAR(dot(d, s), h_closed(*c.shape, d), tol);
             for (const Vec3& x : samples) ASSERT_GE(dot(d, s), dot(d, x) - tol);
