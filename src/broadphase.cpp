@@ -263,7 +263,9 @@ private:
     static bool before(const Endpoint& a, const Endpoint& b) {
         return a.p0 < b.p0 || (a.p0 == b.p0 && (a.tag & 1) < (b.tag & 1));
     }
-    // Sort key for bulk insertion: the ordered bits of the position, then the flag, then the owner.
+    // Sort key for bulk insertion. The talks put the "]" flag in the least significant bit of the
+    // key; a double needs all 64 bits to keep every position apart, so the flag is the bit right
+    // after them (a 65-bit key), and the owner orders equal keys deterministically.
     struct SortItem {
         uint64_t key;
         uint32_t flag_owner;  // is_max << 31 | owner
@@ -467,7 +469,8 @@ void SpacetimeSap::on_step() {
         }
     }
     // Only slots next to a moving endpoint can hold an event: static objects cost nothing here.
-    // When most objects move, one pass along each array reads memory in order instead.
+    // When at least half of the objects move, one pass along each array reads memory in order
+    // instead (the statics' slots cost a comparison each, then).
     if (4 * moving_.size() >= axes_[0].size()) {
         for (int axis = 0; axis < 3; ++axis) {
             const auto n = static_cast<uint32_t>(axes_[static_cast<std::size_t>(axis)].size());
@@ -711,6 +714,15 @@ uint64_t ordered_key(double x) {
 }
 
 // ---- BroadPhase --------------------------------------------------------------------------------
+
+const char* to_string(BroadPhaseKind kind) {
+    switch (kind) {
+        case BroadPhaseKind::SpacetimeSap: return "spacetime_sap";
+        case BroadPhaseKind::EncapsulatingSap: return "encapsulating_sap";
+        case BroadPhaseKind::BruteForce: return "brute_force";
+    }
+    return "unknown";
+}
 
 std::unique_ptr<BroadPhase> BroadPhase::create(BroadPhaseKind kind) {
     switch (kind) {

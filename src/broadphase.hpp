@@ -46,6 +46,9 @@ enum class BroadPhaseKind {
     BruteForce,        // exact 4D box overlap of every pair, O(n^2): the reference
 };
 
+// "spacetime_sap", "encapsulating_sap", "brute_force".
+const char* to_string(BroadPhaseKind kind);
+
 // Work done by one step (and, for teleport_swaps, by the teleports since the previous step).
 struct BroadPhaseCounters {
     uint64_t pairs = 0;            // pairs reported by the step (false positives included)
@@ -76,7 +79,9 @@ uint64_t ordered_key(double x);
 // A broad phase that persists between steps. Between steps: add, remove, teleport (a new box
 // without sweeping). For the coming step: move (the box at the end of the step); objects not
 // moved stay where they are. step() reports the pairs and moves every object to its end box.
-// Pairs of two static objects are never reported. Ids are caller-chosen indices < 2^30.
+// Pairs of two static objects are never reported; pairs already overlapping at the start are
+// reported with t_first = 0, every step while they overlap. Ids are caller-chosen indices < 2^30.
+// Steady state (no adds or removes) allocates nothing per swap: buffers grow to their peak once.
 class BroadPhase {
 public:
     static std::unique_ptr<BroadPhase> create(BroadPhaseKind kind);
