@@ -6,21 +6,25 @@
 // delete the facets it sees, join it to their horizon and hand the orphaned points to the new
 // facets. Points left on no conflict list are inside or on the hull.
 //
-// Robustness: every above/below decision is the exact sign of the orientation determinant of
-// the (power-of-two rescaled) input doubles: a floating-point filter with a forward error bound
-// (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
-// Predicates", 1997, bound for orient3d) and, when the filter cannot decide, an exact evaluation
-// with floating-point expansions. The result is therefore the exact hull of the given doubles.
-// Facets are triangles; coplanar neighbours may remain. A point exactly on a face or an edge is
-// not a vertex: after construction a vertex is kept only if the facets around it span at least
-// three distinct planes (a point in the relative interior of a facet of a polytope lies in one
-// plane of it, one in an edge's interior in two); when some are not, the hull is rebuilt from
-// the true vertices alone, which changes neither the solid nor the answer.
+// Robustness: every above/below decision that shapes the mesh is the exact sign of the
+// orientation determinant of the (power-of-two rescaled) input doubles: a floating-point filter
+// with a forward error bound (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast
+// Robust Geometric Predicates", 1997, the orient3d bound) and, when the filter cannot decide, an
+// exact evaluation with floating-point expansions. So the horizon is always one simple cycle and
+// the mesh always a closed convex triangulation, whatever the input's degeneracies.
 //
-// Degeneracy (the only place with a tolerance): the set is Collinear when every point lies within
-// kFlatTolerance * extent of the line through the two extreme points along the widest axis, and
-// Coplanar when every point lies within kFlatTolerance * extent of the plane through that line
-// and the point farthest from it, where extent is the widest side of the bounding box.
+// Which points are vertices. Facets are triangles; coplanar neighbours may remain. A point is
+// a vertex only if the facets around it span at least three distinct planes (a point in the
+// relative interior of a polytope's facet lies in one facet plane, one inside an edge in two);
+// when some hull points are not, the hull is rebuilt from the others, which changes neither the
+// solid nor any support value. Two tolerances relative to the set's extent (the widest side of
+// its bounding box), the only ones in this file:
+// - kThinTolerance (1e-12): a point at most that far above every facet is taken as on the hull,
+//   and two adjacent facets whose planes are that close count as one plane. Without it, points
+//   that rounding left a hair outside a face (the face points of a rotated box) would be kept.
+// - kFlatTolerance (1e-10): the set is Collinear when every point lies within it of the line
+//   through the two extreme points along the widest axis, and Coplanar when every point lies
+//   within it of the plane through that line and the point farthest from it.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -75,6 +79,12 @@ namespace {
 // above the rounding of the distance computations (~1e-15 of the extent) and far below any
 // shape a caller means as a solid.
 constexpr double kFlatTolerance = 1e-10;
+// Relative tolerance of "on the hull": a point less than kThinTolerance * extent outside the hull
+// of the others is not kept, and two facets whose planes differ by less than that count as one.
+// Exact predicates alone would keep every point that rounding pushed a hair outside a face (the
+// face points of a rotated box). Far above rounding (~1e-16), far below any feature; the
+// support of the hull is within about this distance of the maximum over all input points.
+constexpr double kThinTolerance = 1e-12;
 
 // ---- Exact orientation ------------------------------------------------------------------------
 
@@ -194,7 +204,9 @@ struct Face {
 
 class Quickhull {
 public:
-    explicit Quickhull(const std::vector<Vec3>& p) : pts_(p), next_(p.size(), kNone), horizon_from_(p.size(), kNone) {
+    // `thin`: a point at most this far above every face (but possibly exactly outside) is taken
+    // as on the hull and dropped.
+    Quickhull(const std::vector<Vec3>& p, double thin) : pts_(p), thin_(thin), next_(p.size(), kNone), horizon_from_(p.size(), kNone) {
         faces_.reserve(2 * p.size() + 8);  // a hull of n points has at most 2n - 4 faces
     }
 
@@ -283,7 +295,9 @@ private:
                 const uint32_t fi = face_list ? (*face_list)[k] : first_face + k;
                 Face& f = faces_[fi];
                 const Orientation o = side(f, q);
-                if (o.sign > 0) {
+                // Exactly above, and by more than the thin tolerance (rounded; only which of the
+                // barely-outside points get dropped depends on that rounding, never the topology).
+                if (o.sign > 0 && o.value > thin_ * length(f.normal)) {
                     next_[q] = f.outside;
                     f.outside = q;
                     // The determinant is the distance times a per-face constant.
@@ -377,6 +391,7 @@ private:
     };
 
     const std::vector<Vec3>& pts_;
+    double thin_;
     std::vector<Face> faces_;
     std::vector<uint32_t> next_;  // per point: the next point of the same conflict list
     std::vector<uint32_t> free_, pending_, visible_, orphans_, new_faces_;
@@ -430,6 +445,7 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     const double extent = size[axis];
     if (!(extent > 0)) return HullStatus::Collinear;  // a single point repeated
     const double tolerance = kFlatTolerance * extent;
+    const double thin = kThinTolerance * extent;
 
     std::vector<uint32_t> ids(count);
     for (size_t i = 0; i < count; ++i) ids[i] = static_cast<uint32_t>(i);
@@ -462,7 +478,7 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     std::vector<uint32_t> hull_vertices;
     std::vector<std::pair<uint32_t, uint32_t>> edges;  // (smaller, larger) per hull edge
     for (int attempt = 0;; ++attempt) {
-        Quickhull qh(p);
+        Quickhull qh(p, thin);
         qh.build(ids, tetra);
         const auto& faces = qh.faces();
         std::vector<uint32_t> bends(count, 0);
@@ -479,14 +495,17 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
                 uint32_t opposite = g.v[0];
                 for (uint32_t w : g.v)
                     if (w != a && w != b) opposite = w;
-                if (orient(p[f.v[0]], p[f.v[1]], p[f.v[2]], p[opposite]).sign != 0) {
+                const Orientation o = orient(p[f.v[0]], p[f.v[1]], p[f.v[2]], p[opposite]);
+                const bool flat = o.sign == 0 || std::fabs(o.value) <= thin * length(f.normal);
+                if (!flat) {
                     ++bends[a];
                     ++bends[b];
                 }
             }
         }
-        // A rebuild from true vertices drops none; the attempt cap is only a guard.
-        const bool last = attempt == 2;
+        // Dropping a vertex can leave a neighbour on a flat spot, hence the rounds; exactly flat
+        // spots all go in the first one. The cap is a guard: the last round keeps every vertex.
+        const bool last = attempt == 4;
         hull_vertices.clear();
         bool dropped = false;
         for (uint32_t i = 0; i < count; ++i) {

@@ -271,9 +271,9 @@ TEST(HullBruteForce, ManySmallDegenerateLatticeSets) {
     }
 }
 
-TEST(HullClosedForm, RotatedCubeSurfaceSupports) {
-    // On a rotated cube the face points are off their planes by rounding, so which of them are
-    // exact vertices is not known in closed form; the support still is, and the 8 corners stay.
+TEST(HullClosedForm, RotatedCubeSurfaceKeepsOnlyCorners) {
+    // On a rotated cube the face points are off their planes by rounding (~1e-16), some of them
+    // a hair outside: the thin tolerance (1e-12 of the extent) takes them as on the faces.
     Rng rng(kSeed + 450);
     Quat q{0.3, -0.5, 0.2, 0.7};
     const Mat3 rot = to_matrix(normalized(q));
@@ -287,8 +287,27 @@ TEST(HullClosedForm, RotatedCubeSurfaceSupports) {
     }
     HullHolder hull(pts);
     ASSERT_EQ(hull.status, HullStatus::Ok);
-    for (const Vec3& c : corners) EXPECT_NE(std::find(hull.shape->vertices.begin(), hull.shape->vertices.end(), c), hull.shape->vertices.end());
+    EXPECT_EQ(sorted(hull.shape->vertices), sorted(corners));
     expect_supports_match(*hull.shape, pts, rng, 2000);
+}
+
+TEST(HullClosedForm, ThinToleranceIsRelativeToTheExtent) {
+    // A bump on a cube's top face: 1e-14 of the extent above it is on the face (dropped), 1e-9
+    // above it is a vertex; at any scale of the whole set.
+    for (double scale : {1.0, 1e-150, 1e150}) {
+        for (double bump : {1e-14, 1e-9}) {
+            SCOPED_TRACE("scale " + std::to_string(std::log10(scale)) + ", bump " + std::to_string(std::log10(bump)));
+            std::vector<Vec3> pts;
+            for (int c = 0; c < 8; ++c) pts.push_back(scale * Vec3{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+            const Vec3 top = scale * Vec3{0.25, -0.5, 1 + 2 * bump};
+            pts.push_back(top);
+            HullHolder hull(pts);
+            ASSERT_EQ(hull.status, HullStatus::Ok);
+            const bool kept = std::find(hull.shape->vertices.begin(), hull.shape->vertices.end(), top) != hull.shape->vertices.end();
+            EXPECT_EQ(kept, bump > 1e-12);
+            EXPECT_EQ(hull.shape->vertices.size(), kept ? 9u : 8u);
+        }
+    }
 }
 
 TEST(HullClosedForm, FullGridAndOctahedron) {
