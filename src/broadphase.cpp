@@ -164,6 +164,9 @@ public:
         sift_down(pos_[last.slot]);
     }
 
+    // Only while not empty.
+    uint32_t top() const { return heap_.front().slot; }
+
     // The earliest event: its slot and time. Floyd's variant: the hole at the top goes down to a
     // leaf along the smaller children (one comparison per level), then the last entry fills it
     // and rises, usually by a level or two.
@@ -491,6 +494,11 @@ void SpacetimeSap::on_step() {
         double t = 0;
         const uint32_t slot = heap_.pop(&t);
         ++counters_.heap_pops;
+        // The next event is known now: start loading its endpoints while this one is done.
+        if (!heap_.empty()) {
+            const uint32_t next = heap_.top();
+            __builtin_prefetch(&axes_[next & 3][next >> 2]);
+        }
         const int axis = static_cast<int>(slot & 3);
         const uint32_t i = slot >> 2;
         swap_at(axis, i, t, true);
