@@ -102,10 +102,10 @@ inline void two_product(double a, double b, double& p, double& e) {
 }
 
 // A nonoverlapping floating-point expansion in increasing magnitude, zeros removed. Its exact
-// value is the sum of its components; its sign is that of its last (largest) component. A sum
-// of doubles spans at most ~2100 bits, so fewer than 48 nonoverlapping components exist.
+// value is the sum of its components; its sign is that of its last (largest) component. Each
+// add grows it by at most one component, and orient_exact adds 192 terms: 192 slots suffice.
 struct Expansion {
-    std::array<double, 64> c{};
+    std::array<double, 192> c;
     int n = 0;
     // Shewchuk's Grow-Expansion: adds b exactly, keeps the expansion nonoverlapping.
     void add(double b) {
