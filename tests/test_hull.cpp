@@ -275,6 +275,7 @@ TEST(HullClosedForm, RotatedCubeSurfaceKeepsOnlyCorners) {
     // On a rotated cube the face points are off their planes by rounding (~1e-16), some of them
     // a hair outside: the thin tolerance (1e-12 of the extent) takes them as on the faces.
     Rng rng(kSeed + 450);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 450));
     Quat q{0.3, -0.5, 0.2, 0.7};
     const Mat3 rot = to_matrix(normalized(q));
     std::vector<Vec3> pts, corners;
@@ -319,6 +320,7 @@ TEST(HullClosedForm, FullGridAndOctahedron) {
                 if (std::abs(x) + std::abs(y) + std::abs(z) <= 3) octahedron.push_back({double(x), double(y), double(z)});
             }
     Rng rng(kSeed + 400);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 400));
     std::shuffle(grid.begin(), grid.end(), rng);
     HullHolder cube(grid), octa(octahedron);
     ASSERT_EQ(cube.status, HullStatus::Ok);
@@ -387,6 +389,7 @@ TEST(HullClimb, PrismWithFlatFacesAndPointsOnEdges) {
     // 48 points on a circle at z = 0 and z = 1: the vertices. Points on the vertical edges and
     // inside the top and bottom faces lie exactly on the hull and must not be kept.
     Rng rng(kSeed + 700);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 700));
     std::vector<Vec3> pts, ring;
     for (int i = 0; i < 48; ++i) {
         const double a = 2 * M_PI * i / 48;
@@ -456,6 +459,7 @@ TEST(HullRange, LargestAndSubnormalCoordinates) {
 
 TEST(HullDeterminism, SameInputSameHull) {
     Rng rng(kSeed + 800);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 800));
     std::vector<Vec3> pts;
     for (int i = 0; i < 3000; ++i) pts.push_back({uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)});
     for (int i = 0; i < 500; ++i) pts.push_back(random_unit(rng));
@@ -476,6 +480,7 @@ TEST(HullDeterminism, SameInputSameHull) {
 
 TEST(HullLarge, HundredThousandPoints) {
     Rng rng(kSeed + 900);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 900));
     for (int cloud = 0; cloud < 2; ++cloud) {
         SCOPED_TRACE(cloud == 0 ? "100k in a cube" : "100k on a sphere");
         std::vector<Vec3> pts;
@@ -506,6 +511,7 @@ HullStatus status_of(const std::vector<Vec3>& pts) {
 
 TEST(HullErrors, DegenerateInputs) {
     Rng rng(kSeed + 1000);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 1000));
     EXPECT_EQ(status_of({}), HullStatus::TooFewPoints);
     EXPECT_EQ(status_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), HullStatus::TooFewPoints);
     EXPECT_EQ(status_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), HullStatus::Ok);
