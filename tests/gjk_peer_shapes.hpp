@@ -183,6 +183,29 @@ inline void place_pair(std::mt19937_64& rng, Spec& a, Spec& b) {
     b.pose = kairos::make_pose(a.pose.translation + reach * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
 }
 
+struct Pair {
+    Spec a, b;
+};
+
+// count pairs cycling through every combination of kinds, placed by place_pair.
+inline std::vector<Pair> random_pairs(uint64_t seed, int count) {
+    std::mt19937_64 rng(seed);
+    std::vector<Pair> pairs;
+    for (int i = 0; i < count; ++i) {
+        const Kind ka = static_cast<Kind>(i % 6), kb = static_cast<Kind>((i / 6) % 6);
+        Pair p{random_spec(rng, ka), random_spec(rng, kb)};
+        place_pair(rng, p.a, p.b);
+        pairs.push_back(std::move(p));
+    }
+    return pairs;
+}
+
+inline double pair_scale(const Pair& p) {
+    return extent(p.a) + extent(p.b) + kairos::length(p.b.pose.translation - p.a.pose.translation);
+}
+
+inline bool is_polytope(const Spec& s) { return s.kind == Kind::Box || s.kind == Kind::Hull; }
+
 // Independent certificates of a GJK answer, with the test-side supports:
 // separated: both points on their shapes, |pb - pa| = d (an upper bound), and the plane normal to
 // the reported axis separates (its gap, max_A n.x to min_B n.x, is a lower bound of the distance);

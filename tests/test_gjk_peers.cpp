@@ -162,29 +162,10 @@ ccd_t ccd_setup() {
     return c;
 }
 
-// ---- Pairs -------------------------------------------------------------------------------------
-
-struct Pair {
-    Spec a, b;
-};
-
-std::vector<Pair> random_pairs(uint64_t seed, int count) {
-    std::mt19937_64 rng(seed);
-    std::vector<Pair> pairs;
-    for (int i = 0; i < count; ++i) {
-        const Kind ka = static_cast<Kind>(i % 6), kb = static_cast<Kind>((i / 6) % 6);
-        Pair p{peer::random_spec(rng, ka), peer::random_spec(rng, kb)};
-        peer::place_pair(rng, p.a, p.b);
-        pairs.push_back(std::move(p));
-    }
-    return pairs;
-}
-
-double pair_scale(const Pair& p) {
-    return peer::extent(p.a) + peer::extent(p.b) + length(p.b.pose.translation - p.a.pose.translation);
-}
-
-bool is_polytope(const Spec& s) { return s.kind == Kind::Box || s.kind == Kind::Hull; }
+using peer::Pair;
+using peer::pair_scale;
+using peer::is_polytope;
+using peer::random_pairs;
 
 }  // namespace
 
