@@ -1,0 +1,500 @@
+// GJK ray cast and shape cast loops, instantiated per pair of support kinds (no virtual call, no
+// allocation). Shape casts run in A's local frame; results go back to the world frame.
+#include "cast.hpp"
+
+#include <bit>
+#include <cmath>
+
+namespace kairos {
+namespace cast_detail {
+
+using gjk_detail::Simplex;
+
+namespace {
+
+// Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
+// current), then the backup pass: the subset with positive determinants whose affine closest
+// point is nearest x.
+Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
+    const auto& table = gjk_detail::kSubsets;
+    const unsigned n_sub = table.count[all];
+    for (unsigned t = 1; t < n_sub; ++t) {
+        const unsigned sub = table.subsets[all][t];
+        if (sub == 15u) continue;  // decided geometrically above
+        if (s.valid(sub, all)) {
+            s.set_from_subset(sub);
+            return Simplex::Outcome::Reduced;
+        }
+    }
+    double best = INFINITY;
+    unsigned best_s = 0;
+    for (unsigned t = 1; t < n_sub; ++t) {
+        const unsigned sub = table.subsets[all][t];
+        if (sub == 15u) continue;
+        bool positive = true;
+        double sum = 0;
+        for (unsigned r = sub; r; r &= r - 1) {
+            const double d = s.det[sub][std::countr_zero(r)];
+            if (!(d > 0)) positive = false;  // NaN fails too
+            sum += d;
+        }
+        if (!positive) continue;
+        Vec3 p{};
+        for (unsigned r = sub; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            p += (s.det[sub][i] / sum) * s.y[i];
+        }
+        const double n2 = dot(p, p);
+        if (n2 < best) {
+            best = n2;
+            best_s = sub;
+        }
+    }
+    if (best_s == 0) return Simplex::Outcome::Failed;
+    s.set_from_subset(best_s);
+    return Simplex::Outcome::Backup;
+}
+
+// A tetrahedron whose signed volume is rounding noise (coplanar support points, common on flat
+// faces and disks) says nothing about whether it holds x: signed volumes of 1e-16 gave "inside" for
+// x far outside the points' polygon. Such a Full is replaced by the best proper sub-simplex.
+Simplex::Outcome check_full(Simplex& s) {
+    const Vec3 e1 = s.y[1] - s.y[0], e2 = s.y[2] - s.y[0], e3 = s.y[3] - s.y[0];
+    const double vol = std::fabs(dot(e1, cross(e2, e3)));
+    const double scale = length(e1) * length(e2) * length(e3);
+    if (vol > 1e-10 * scale) return Simplex::Outcome::Full;
+    return johnson_proper(s, 15u);
+}
+
+}  // namespace
+
+Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
+    unsigned all = s.bits;
+    if (add) {
+        const int slot = std::countr_zero(~all & 15u);
+        s.pa[slot] = a;
+        s.pb[slot] = b;
+        all |= 1u << slot;
+    }
+    // y_i = x - p_i with p_i = a_i - b_i written exactly as the loop writes w, so a repeated
+    // support point compares equal; then every norm, determinant and cached sum of the points.
+    for (unsigned r = all; r; r &= r - 1) {
+        const int i = std::countr_zero(r);
+        s.y[i] = x - (s.pa[i] - s.pb[i]);
+    }
+    s.recompute_all(all);
+    s.last_all = all;
+    if (all == 15u && s.origin_in_tetrahedron()) {
+        s.bits = 15u;
+        s.v = Vec3{};
+        return check_full(s);
+    }
+    return johnson_proper(s, all);
+}
+
+namespace {
+
+// ---- Support mappings of the cores, in their local frame -----------------------------------------
+// Spheres and capsules are a point or a segment plus a radius: the loop runs on the core and folds
+// the radius into the clip and termination tests (fewer iterations on round shapes).
+
+struct PointSupport {
+    Vec3 operator()(Vec3) const { return {}; }
+};
+struct SegmentSupport {
+    double h;
+    Vec3 operator()(Vec3 d) const { return {0, 0, support_sign(d.z) * h}; }
+};
+struct BoxSupport {
+    Vec3 h;
+    Vec3 operator()(Vec3 d) const { return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z}; }
+};
+// Brute force over a small hull's vertices, first maximum wins (as ConvexHullShape::support).
+struct SmallHullSupport {
+    const Vec3* v;
+    size_t n;
+    Vec3 operator()(Vec3 d) const {
+        size_t best = 0;
+        double best_dot = dot(d, v[0]);
+        for (size_t i = 1; i < n; ++i) {
+            const double s = dot(d, v[i]);
+            if (s > best_dot) {
+                best_dot = s;
+                best = i;
+            }
+        }
+        return v[best];
+    }
+};
+struct GenericSupport {
+    const Shape* s;
+    Vec3 operator()(Vec3 d) const { return support(*s, d); }
+};
+
+// C = one shape (ray cast): p = s(d); b is zero.
+template <class S>
+struct SingleSupport {
+    S s;
+    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
+        out_a = s(d);
+        out_b = Vec3{};
+        return out_a;
+    }
+};
+
+// C = A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
+template <class SA, class SB>
+struct PairSupport {
+    SA sa;
+    SB sb;
+    Mat3 r;
+    Vec3 t;
+    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
+        out_a = sa(d);
+        out_b = r * sb(mul_transpose(r, -d)) + t;
+        return out_a - out_b;
+    }
+};
+
+enum class Core { Point, Segment, Box, SmallHull, Generic };
+struct CoreOf {
+    Core core;
+    double radius;
+};
+
+CoreOf classify(const Shape& s) {
+    switch (s.kind()) {
+        case ShapeKind::Point:
+            return {Core::Point, 0};
+        case ShapeKind::Sphere:
+            return {Core::Point, static_cast<const SphereShape&>(s).radius};
+        case ShapeKind::Segment:
+            return {Core::Segment, 0};
+        case ShapeKind::Capsule:
+            return {Core::Segment, static_cast<const CapsuleShape&>(s).radius};
+        case ShapeKind::Box:
+            return {Core::Box, 0};
+        case ShapeKind::ConvexHull: {
+            const auto& h = static_cast<const ConvexHullShape&>(s);
+            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0};
+            return {Core::Generic, 0};
+        }
+        default:
+            return {Core::Generic, 0};
+    }
+}
+
+template <class Fn>
+auto with_support(const Shape& s, Core c, Fn&& fn) {
+    switch (c) {
+        case Core::Point:
+            return fn(PointSupport{});
+        case Core::Segment:
+            return fn(SegmentSupport{s.kind() == ShapeKind::Capsule ? static_cast<const CapsuleShape&>(s).half_height
+                                                                    : static_cast<const SegmentShape&>(s).half_length});
+        case Core::Box:
+            return fn(BoxSupport{static_cast<const BoxShape&>(s).half_extents});
+        case Core::SmallHull: {
+            const auto& h = static_cast<const ConvexHullShape&>(s);
+            return fn(SmallHullSupport{h.vertices.data(), h.vertices.size()});
+        }
+        case Core::Generic:
+            break;
+    }
+    return fn(GenericSupport{&s});
+}
+
+// x reached the boundary of C (a clip happened, so x is on or outside C) and the tetrahedron of
+// the simplex holds it: x lies on one of its faces. The coordinates from signed volumes lose their
+// digits on flat tetrahedra, so the contact point is taken from the face nearest x, with the face's
+// own coordinates (all of them non-negative up to rounding); without such a face the tetrahedron's
+// coordinates stay.
+void on_boundary_face(Simplex& sx) {
+    const Simplex full = sx;
+    double best = INFINITY;
+    unsigned best_face = 0;
+    for (int drop = 0; drop < 4; ++drop) {
+        const unsigned face = 15u & ~(1u << drop);
+        Simplex trial = full;
+        trial.set_from_subset(face);
+        bool inside = true;
+        for (unsigned r = face; r; r &= r - 1)
+            if (!(trial.lambda[std::countr_zero(r)] >= -1e-9)) inside = false;
+        const double d = dot(trial.v, trial.v);
+        if (inside && d < best) {
+            best = d;
+            best_face = face;
+        }
+    }
+    if (best_face == 0) return;
+    sx.set_from_subset(best_face);
+    sx.v = Vec3{};
+}
+
+// ---- The cast loop ------------------------------------------------------------------------------
+
+struct LocalCast {
+    bool hit;
+    bool clipped;   // at least one clip happened: `normal` holds its plane's normal
+    double lambda;
+    Vec3 normal;    // v of the latest clip (not unit)
+    Vec3 v;         // final x - c
+    Vec3 point_a, point_b;  // barycentric points of the final simplex (cores)
+    uint32_t iterations;
+    Termination termination;
+};
+
+// Ray x(lambda) = s + lambda r against C (+ a ball of radius `margin`), C given by `sup`.
+// v0: the first search direction (x - some point of C, any non-zero vector works).
+template <class Support>
+LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double tolerance,
+                    uint32_t max_iterations, ClipPolicy policy) {
+    Simplex sx;
+    double lambda = 0;
+    Vec3 x = s;
+    Vec3 v = v0;
+    Vec3 normal{};
+    bool clipped = false;
+    bool moved = true;       // x moved since the last add (nothing added yet counts as moved)
+    int restarts_left = 2;   // restarts of the simplex by the guards (Johnson failure, stalls)
+    // Below this ||v|| relative to the simplex's size a stall is convergence (curved surfaces stall
+    // near 1e-7 in double precision); above it the simplex is restarted.
+    constexpr double kLoose = 1e-6;
+    double vv = INFINITY;    // ||v||^2 of the current simplex estimate
+    double best_vv = INFINITY;  // smallest ||v||^2 since the last clip
+    int stalled = 0;            // estimates in a row, since then, that did not improve on it
+    constexpr int kStall = 4;
+    // Below 64 ulp of the simplex's size v carries no digit: the tolerance is clamped there.
+    const double eps_sq = std::fmax(tolerance * tolerance, gjk_detail::kNearContact);
+    const double eps = std::sqrt(eps_sq);
+
+    LocalCast out{};
+    out.hit = true;  // every exit except the two miss tests leaves lambda as a lower bound of a hit
+    out.termination = Termination::MaxIterations;
+    uint32_t it = 0;
+    while (it < max_iterations) {
+        Vec3 a, b;
+        const Vec3 p = sup(v, a, b);
+        ++it;
+        Vec3 w = x - p;
+        const double vw = dot(v, w);
+        // With a margin the support plane of the rounded C is offset by margin along v.
+        const double offset = margin > 0 ? margin * std::sqrt(dot(v, v)) : 0.0;
+        if (vw > offset) {  // the plane separates x from C: clip (NaN fails and does not clip)
+            const double vr = dot(v, r);
+            if (!(vr < 0)) {  // x moves away from (or along) the plane: the ray misses
+                out.hit = false;
+                out.termination = Termination::Separated;
+                break;
+            }
+            lambda -= (vw - offset) / vr;
+            if (!(lambda <= 1)) {
+                out.hit = false;
+                out.termination = Termination::Separated;
+                break;
+            }
+            x = s + lambda * r;
+            w = x - p;
+            normal = v;
+            clipped = true;
+            moved = true;
+            if (policy == ClipPolicy::Restart) {
+                sx.bits = 0;
+                sx.last_all = 0;
+            }
+        }
+
+        // A guard fired (rule 5, rule 6, or a stall) while ||v|| is still large: the simplex went
+        // bad by rounding (near-duplicate or coplanar points), so x's status is unknown. Restart
+        // from the newest support point while the budget lasts; a small ||v|| is convergence.
+        auto restart = [&](double norm_sq) {
+            if (restarts_left == 0 || norm_sq <= kLoose * kLoose * sx.max_norm_sq()) return false;
+            --restarts_left;
+            sx.bits = 0;
+            sx.last_all = 0;
+            return true;
+        };
+
+        Simplex::Outcome o;
+        if (!moved && sx.contains(w)) {
+            // Rule 5 (only while x stays put: after a clip a known point is new information).
+            if (!restart(vv)) {
+                out.termination = Termination::RepeatedSupport;
+                break;
+            }
+            o = sx.add(w, a, b, INFINITY);
+            moved = true;  // a fresh simplex: its first estimate is not compared with the last
+        } else if (!moved) {
+            o = sx.add(w, a, b, vv);
+        } else if (policy == ClipPolicy::Keep && sx.bits != 0) {
+            bool known = false;
+            for (unsigned q = sx.bits; q; q &= q - 1) {
+                const int i = std::countr_zero(q);
+                if (sx.pa[i] == a && sx.pb[i] == b) known = true;
+            }
+            o = rebuild(sx, x, !known, a, b);
+        } else {
+            sx.bits = 0;
+            o = sx.add(w, a, b, INFINITY);
+        }
+        if (o == Simplex::Outcome::Full) o = check_full(sx);
+        if (o == Simplex::Outcome::Failed) {
+            // No valid sub-simplex even after the backup pass: restart from the newest point.
+            if (restarts_left == 0) {
+                out.termination = Termination::JohnsonFailed;
+                break;
+            }
+            --restarts_left;
+            sx.bits = 0;
+            o = sx.add(w, a, b, INFINITY);
+            moved = true;
+        }
+        if (o == Simplex::Outcome::Full) {  // x lies inside the core
+            out.termination = Termination::FullSimplex;
+            if (clipped) on_boundary_face(sx);
+            vv = 0;
+            break;
+        }
+        const double nv = dot(sx.v, sx.v);
+        const double size_sq = sx.max_norm_sq();
+        if (margin > 0 ? std::sqrt(nv) - margin <= eps * std::sqrt(size_sq) : nv <= eps_sq * size_sq) {
+            out.termination = Termination::Hit;
+            vv = nv;
+            break;
+        }
+        // Rule 6 while x stays put: GJK about a fixed point has converged to rounding. On curved
+        // shapes rounding can also make ||v|| wander without a clip: kStall estimates in a row that
+        // do not improve on the best since the last clip end the iteration the same way.
+        bool no_progress = false;
+        if (!moved && vv - nv <= gjk_detail::kNoProgress * vv) no_progress = true;
+        if (moved || nv < best_vv) {
+            best_vv = nv;
+            stalled = 0;
+        } else if (++stalled >= kStall) {
+            no_progress = true;
+        }
+        if (no_progress) {
+            if (!restart(nv)) {
+                out.termination = Termination::NoProgress;
+                vv = nv;
+                break;
+            }
+            o = sx.add(w, a, b, INFINITY);
+            best_vv = INFINITY;
+            stalled = 0;
+            vv = dot(sx.v, sx.v);
+            v = sx.v;
+            continue;
+        }
+        moved = false;
+        vv = nv;
+        v = sx.v;
+    }
+    (void)vv;
+    out.iterations = it;
+    out.lambda = lambda;
+    out.clipped = clipped;
+    out.normal = normal;
+    out.v = sx.bits != 0 ? sx.v : v;
+    if (sx.bits != 0) {
+        sx.closest_points(out.point_a, out.point_b);
+    } else {
+        out.point_a = out.point_b = Vec3{};
+    }
+    return out;
+}
+
+// A first search direction: x - c for some c of C. Against the ray (-r) the first support is C's
+// point nearest the ray's start along r, whose plane is usually the first clip.
+Vec3 first_direction(Vec3 r, Vec3 toward_x) {
+    if (dot(r, r) > 0 && std::isfinite(dot(r, r))) return -r;
+    if (dot(toward_x, toward_x) > 0) return toward_x;
+    return {1, 0, 0};
+}
+
+}  // namespace
+
+CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
+                    uint32_t max_iterations, ClipPolicy policy) {
+    if (max_iterations == 0) max_iterations = 1;
+    const Vec3 s = pose.apply_inverse(origin);
+    const Vec3 r = pose.to_local_direction(translation);
+    const CoreOf c = classify(shape);
+    const LocalCast l = with_support(shape, c.core, [&](auto core) {
+        return cast_loop(SingleSupport<decltype(core)>{core}, c.radius, s, r, first_direction(r, s), tolerance,
+                         max_iterations, policy);
+    });
+    CastResult out;
+    out.iterations = l.iterations;
+    out.termination = l.termination;
+    out.hit = l.hit;
+    if (!l.hit) {
+        out.toi = 1;
+        return out;
+    }
+    out.toi = l.lambda;
+    // Start inside: -r, or from the shape's origin toward the ray's start, or +z.
+    const Vec3 fallback = normalized_or(-r, normalized_or(s, {0, 0, 1}));
+    const Vec3 n = l.clipped ? normalized_or(l.normal, fallback) : fallback;
+    // Point on the surface: the core's closest point pushed out by the radius along v.
+    Vec3 p = l.point_a;
+    if (c.radius > 0) p += c.radius * normalized_or(l.v, n);
+    out.normal = pose.rotation * n;
+    out.point = pose.apply(p);
+    return out;
+}
+
+CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
+                      Vec3 translation_b, double tolerance, uint32_t max_iterations, ClipPolicy policy) {
+    if (max_iterations == 0) max_iterations = 1;
+    const CoreOf ca = classify(a), cb = classify(b);
+    // B's frame in A's: x -> Ra^T Rb x + Ra^T (pb - pa); differences are taken in the world before
+    // rotating, so shapes far from the world origin keep their relative precision.
+    const Mat3 rot = transpose(pose_a.rotation) * pose_b.rotation;
+    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    const Vec3 ta = pose_a.to_local_direction(translation_a);
+    const Vec3 tb = pose_a.to_local_direction(translation_b);
+    const Vec3 r = pose_a.to_local_direction(translation_b - translation_a);
+    const double margin = ca.radius + cb.radius;
+    const LocalCast l = with_support(a, ca.core, [&](auto sa) {
+        return with_support(b, cb.core, [&](auto sb) {
+            return cast_loop(PairSupport<decltype(sa), decltype(sb)>{sa, sb, rot, t}, margin, Vec3{}, r,
+                             first_direction(r, t), tolerance, max_iterations, policy);
+        });
+    });
+    CastResult out;
+    out.iterations = l.iterations;
+    out.termination = l.termination;
+    out.hit = l.hit;
+    if (!l.hit) {
+        out.toi = 1;
+        return out;
+    }
+    out.toi = l.lambda;
+    // Overlap at the start: -r, or from A's origin toward B's, or +z.
+    const Vec3 fallback = normalized_or(-r, normalized_or(t, {0, 0, 1}));
+    const Vec3 n = l.clipped ? normalized_or(l.normal, fallback) : fallback;
+    // Contact point: the cores' barycentric points pushed out by their radii along v (from A toward
+    // B), each moved to its place at toi; they agree within the tolerance, the midpoint is taken.
+    const Vec3 dir = margin > 0 ? normalized_or(l.v, n) : n;
+    const Vec3 pa = l.point_a + ca.radius * dir + l.lambda * ta;
+    const Vec3 pb = l.point_b - cb.radius * dir + l.lambda * tb;
+    out.normal = pose_a.rotation * n;
+    out.point = pose_a.apply(0.5 * (pa + pb));
+    return out;
+}
+
+}  // namespace cast_detail
+
+CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
+                    uint32_t max_iterations) {
+    return cast_detail::ray_cast(s, pose, origin, translation, tolerance, max_iterations, cast_detail::kDefaultPolicy);
+}
+
+CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
+                      Vec3 translation_b, double tolerance, uint32_t max_iterations) {
+    return cast_detail::shape_cast(a, pose_a, translation_a, b, pose_b, translation_b, tolerance, max_iterations,
+                                   cast_detail::kDefaultPolicy);
+}
+
+}  // namespace kairos
