@@ -84,7 +84,7 @@ kairos_ctest_summary() {
     if grep -q 'tests passed' "$log"; then
         # From "NN% tests passed" to the end: the failed and not-run lists, without the label times.
         sed -n '/tests passed/,$p' "$log" |
-            grep -Ev '^(Label Time Summary:|[[:alnum:]_]+ += .*sec\*proc)' || true
+            grep -Ev '^(Label Time Summary:|[[:alnum:]_]+ += .*sec\*proc)' | cat -s || true
     else
         echo "ctest did not run to the end (configure or build failed); last lines:"
         tail -n 25 "$log"
