@@ -42,7 +42,11 @@ kairos_ensure_deps() {
     if [ "$(id -u)" -ne 0 ]; then
         echo "kairos: missing Debian packages: $missing" >&2
         echo "Run as root first:" >&2
-        echo "  apt-get install -y --no-install-recommends $missing" >&2
+        if compgen -G '/var/lib/apt/lists/*_Packages*' >/dev/null; then
+            echo "  apt-get install -y --no-install-recommends $missing" >&2
+        else
+            echo "  apt-get update && apt-get install -y --no-install-recommends $missing" >&2
+        fi
         return 1
     fi
     echo "kairos: installing missing Debian packages: $missing"
