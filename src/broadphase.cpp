@@ -129,7 +129,6 @@ public:
     }
 
     bool empty() const { return heap_.empty(); }
-    std::size_t size() const { return heap_.size(); }
     bool queued(uint32_t slot) const { return pos_[slot] != kNone; }
     // Only for a queued slot.
     double time(uint32_t slot) const { return heap_[pos_[slot]].t; }
