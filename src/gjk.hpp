@@ -80,6 +80,9 @@ struct SubsetTable {
 };
 inline constexpr SubsetTable kSubsets{};
 
+// Number of points in a 4-bit mask (std::popcount compiles to a library call without -mpopcnt).
+inline constexpr int kBitCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
 // The simplex of GJK: up to four points y_i of A - B with their support points on A and B, and
 // Johnson's determinants Delta_i(X) and u_X = sum Delta_i(X) y_i cached per subset X (bit mask).
 // The dot products y_i.y_j of the classical recursion enter through u_X, in a form that does not
@@ -132,7 +135,7 @@ struct Simplex {
         }
         bits = s;
         v = p;
-        const int count = std::popcount(s);
+        const int count = kBitCount[s];
         if (count == 2) {
             const int i = std::countr_zero(s), j = 31 - std::countl_zero(s);
             const Vec3 e = y[j] - y[i];
@@ -276,7 +279,7 @@ struct Simplex {
         const unsigned n_sub = kSubsets.count[all];
         for (unsigned t = 1; t < n_sub; ++t) {
             const unsigned s = kSubsets.subsets[all][t];
-            if (std::popcount(s) >= 2) compute_subset(s);
+            if (kBitCount[s] >= 2) compute_subset(s);
         }
     }
 

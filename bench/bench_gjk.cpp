@@ -1,0 +1,295 @@
+// GJK benchmark: Kairos against FCL (GST_INDEP), Bullet f64 (btGjkPairDetector) and libccd on the
+// same pre-generated random queries. Reports time per query (use --benchmark_repetitions and the
+// median aggregate) and mean GJK iterations where the library exposes them.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btConeShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <ccd/ccd.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+
+#include "gjk.hpp"
+#include "gjk_peer_shapes.hpp"
+
+using namespace kairos;
+using peer::Kind;
+using peer::Spec;
+
+namespace {
+
+// Per scenario, generated once with a fixed seed. Few enough that every library's queries stay
+// in cache: the comparison is of the algorithms, not of memory latency (with 4096 scattered
+// queries a third of Kairos's time was the first load of each shape).
+constexpr int kQueries = 512;
+constexpr double kTolerance = 1e-10;  // Kairos's public default
+
+// 32 points on an ellipsoid: every one is a hull vertex.
+Spec hull32(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> ext(0.3, 1.5);
+    Spec s;
+    s.kind = Kind::Hull;
+    const Vec3 radii{ext(rng), ext(rng), ext(rng)};
+    for (int i = 0; i < 32; ++i) {
+        const Vec3 d = gjk_test::random_unit(rng);
+        s.verts.push_back({d.x * radii.x, d.y * radii.y, d.z * radii.z});
+    }
+    const double id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, zero[3] = {0, 0, 0};
+    s.local_poly = oracle::make_polytope(oracle::transform(s.verts, id, zero));
+    return s;
+}
+
+enum Scenario { BoxBox, Hull32, CylinderCone, SphereCapsule, BoxBoxMixed };
+
+struct Query {
+    Spec a, b;
+    gjk_test::ShapePtr ka, kb;
+    std::shared_ptr<fcl::CollisionObjectd> fa, fb;
+    std::unique_ptr<btConvexShape> ba, bb;
+    btTransform ta, tb;
+    Vec3 axis_cache;
+};
+
+std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const Spec& s) {
+    switch (s.kind) {
+        case Kind::Box:
+            return std::make_shared<fcl::Boxd>(2 * s.a, 2 * s.b, 2 * s.c);
+        case Kind::Sphere:
+            return std::make_shared<fcl::Sphered>(s.a);
+        case Kind::Capsule:
+            return std::make_shared<fcl::Capsuled>(s.a, 2 * s.b);
+        case Kind::Cylinder:
+            return std::make_shared<fcl::Cylinderd>(s.a, 2 * s.b);
+        case Kind::Cone:
+            return std::make_shared<fcl::Coned>(s.a, 2 * s.b);
+        case Kind::Hull: {
+            auto verts = std::make_shared<std::vector<fcl::Vector3d>>();
+            for (const auto& p : s.verts) verts->emplace_back(p[0], p[1], p[2]);
+            auto faces = std::make_shared<std::vector<int>>();
+            const auto& poly = s.local_poly;
+            for (size_t f = 0; f < poly.faces.size(); ++f) {
+                auto t = poly.faces[f];
+                const oracle::P3 n = oracle::cross(poly.v[t[1]] - poly.v[t[0]], poly.v[t[2]] - poly.v[t[0]]);
+                if (oracle::dot(n, poly.normals[f]) < 0) std::swap(t[1], t[2]);
+                faces->insert(faces->end(), {3, t[0], t[1], t[2]});
+            }
+            return std::make_shared<fcl::Convexd>(verts, static_cast<int>(poly.faces.size()), faces);
+        }
+    }
+    return nullptr;
+}
+
+fcl::Transform3d fcl_transform(const Pose& p) {
+    fcl::Transform3d t = fcl::Transform3d::Identity();
+    fcl::Matrix3d r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r(i, j) = p.rotation.r[i][j];
+    t.linear() = r;
+    t.translation() = fcl::Vector3d(p.translation.x, p.translation.y, p.translation.z);
+    return t;
+}
+
+std::unique_ptr<btConvexShape> bullet_shape(const Spec& s) {
+    std::unique_ptr<btConvexShape> out;
+    switch (s.kind) {
+        case Kind::Box:
+            out = std::make_unique<btBoxShape>(btVector3(s.a, s.b, s.c));
+            break;
+        case Kind::Sphere:
+            return std::make_unique<btSphereShape>(s.a);
+        case Kind::Capsule:
+            return std::make_unique<btCapsuleShapeZ>(s.a, 2 * s.b);
+        case Kind::Cylinder:
+            out = std::make_unique<btCylinderShapeZ>(btVector3(s.a, s.a, s.b));
+            break;
+        case Kind::Cone:
+            out = std::make_unique<btConeShapeZ>(s.a, 2 * s.b);
+            break;
+        case Kind::Hull: {
+            auto h = std::make_unique<btConvexHullShape>();
+            for (const auto& p : s.verts) h->addPoint(btVector3(p[0], p[1], p[2]), false);
+            h->recalcLocalAabb();
+            out = std::move(h);
+            break;
+        }
+    }
+    out->setMargin(0);
+    return out;
+}
+
+btTransform bullet_transform(const Pose& p) {
+    const Mat3& r = p.rotation;
+    return btTransform(btMatrix3x3(r.r[0].x, r.r[0].y, r.r[0].z, r.r[1].x, r.r[1].y, r.r[1].z, r.r[2].x, r.r[2].y, r.r[2].z),
+                       btVector3(p.translation.x, p.translation.y, p.translation.z));
+}
+
+std::vector<Query>& queries(Scenario sc) {
+    static std::vector<Query> all[5];
+    std::vector<Query>& q = all[sc];
+    if (!q.empty()) return q;
+    std::mt19937_64 rng(1234 + sc);
+    q.resize(kQueries);
+    for (Query& x : q) {
+        switch (sc) {
+            case BoxBox:
+            case BoxBoxMixed:
+                x.a = peer::random_spec(rng, Kind::Box), x.b = peer::random_spec(rng, Kind::Box);
+                break;
+            case Hull32:
+                x.a = hull32(rng), x.b = hull32(rng);
+                break;
+            case CylinderCone:
+                x.a = peer::random_spec(rng, Kind::Cylinder), x.b = peer::random_spec(rng, Kind::Cone);
+                break;
+            case SphereCapsule:
+                x.a = peer::random_spec(rng, Kind::Sphere), x.b = peer::random_spec(rng, Kind::Capsule);
+                break;
+        }
+        // Distance scenarios hold separated pairs only (penetration is another query: Bullet would
+        // run EPA on overlapping pairs and FCL returns early); box/box keeps both for intersection.
+        for (;;) {
+            peer::place_pair(rng, x.a, x.b);
+            x.ka = peer::make_kairos(x.a), x.kb = peer::make_kairos(x.b);
+            if (sc == BoxBoxMixed || !gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256).intersecting) break;
+        }
+        x.fa = std::make_shared<fcl::CollisionObjectd>(fcl_geometry(x.a), fcl_transform(x.a.pose));
+        x.fb = std::make_shared<fcl::CollisionObjectd>(fcl_geometry(x.b), fcl_transform(x.b.pose));
+        x.ba = bullet_shape(x.a), x.bb = bullet_shape(x.b);
+        x.ta = bullet_transform(x.a.pose), x.tb = bullet_transform(x.b.pose);
+        x.axis_cache = {};
+    }
+    return q;
+}
+
+// ---- Distance ----------------------------------------------------------------------------------
+
+void BM_KairosDistance(benchmark::State& state) {
+    auto& q = queries(static_cast<Scenario>(state.range(0)));
+    size_t i = 0;
+    uint64_t iters = 0, n = 0;
+    for (auto _ : state) {
+        const Query& x = q[i];
+        const DistanceResult r = gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256);
+        benchmark::DoNotOptimize(r);
+        iters += r.iterations, ++n;
+        i = (i + 1) % q.size();
+    }
+    state.counters["gjk_iterations"] = double(iters) / double(n);
+}
+
+void BM_FclDistanceGstIndep(benchmark::State& state) {
+    auto& q = queries(static_cast<Scenario>(state.range(0)));
+    size_t i = 0;
+    for (auto _ : state) {
+        const Query& x = q[i];
+        fcl::DistanceRequestd req;
+        req.enable_nearest_points = true;
+        req.gjk_solver_type = fcl::GST_INDEP;
+        fcl::DistanceResultd res;
+        fcl::distance(x.fa.get(), x.fb.get(), req, res);
+        benchmark::DoNotOptimize(res.min_distance);
+        i = (i + 1) % q.size();
+    }
+}
+
+void BM_BulletF64Distance(benchmark::State& state) {
+    auto& q = queries(static_cast<Scenario>(state.range(0)));
+    size_t i = 0;
+    uint64_t iters = 0, n = 0;
+    for (auto _ : state) {
+        const Query& x = q[i];
+        btVoronoiSimplexSolver simplex;
+        btGjkEpaPenetrationDepthSolver epa;
+        btGjkPairDetector detector(x.ba.get(), x.bb.get(), &simplex, &epa);
+        btGjkPairDetector::ClosestPointInput in;
+        in.m_transformA = x.ta;
+        in.m_transformB = x.tb;
+        btPointCollector out;
+        detector.getClosestPoints(in, out, nullptr);
+        benchmark::DoNotOptimize(out.m_distance);
+        iters += detector.m_curIter, ++n;
+        i = (i + 1) % q.size();
+    }
+    state.counters["gjk_iterations"] = double(iters) / double(n);
+}
+
+// ---- Box/box intersection (random pairs, about a third overlapping) ----------------------------------------------------------------------
+
+void BM_KairosIntersect(benchmark::State& state) {
+    auto& q = queries(BoxBoxMixed);
+    const bool cached = state.range(0) != 0;
+    size_t i = 0;
+    uint64_t iters = 0, n = 0;
+    for (auto _ : state) {
+        Query& x = q[i];
+        Vec3 fresh{};
+        uint32_t it = 0;
+        const bool hit = gjk_intersect(*x.ka, x.a.pose, *x.kb, x.b.pose, cached ? x.axis_cache : fresh, &it);
+        benchmark::DoNotOptimize(hit);
+        iters += it, ++n;
+        i = (i + 1) % q.size();
+    }
+    state.counters["gjk_iterations"] = double(iters) / double(n);
+}
+
+void ccd_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
+    const Spec& s = *static_cast<const Spec*>(obj);
+    const Vec3 p = peer::world_support(s, {dir->v[0], dir->v[1], dir->v[2]});
+    out->v[0] = p.x, out->v[1] = p.y, out->v[2] = p.z;
+}
+void ccd_center(const void* obj, ccd_vec3_t* out) {
+    const Spec& s = *static_cast<const Spec*>(obj);
+    out->v[0] = s.pose.translation.x, out->v[1] = s.pose.translation.y, out->v[2] = s.pose.translation.z;
+}
+
+void BM_LibccdIntersect(benchmark::State& state) {
+    auto& q = queries(BoxBoxMixed);
+    const bool mpr = state.range(0) != 0;
+    ccd_t c;
+    CCD_INIT(&c);
+    c.support1 = c.support2 = ccd_support;
+    c.center1 = c.center2 = ccd_center;
+    c.max_iterations = 1000;
+    size_t i = 0;
+    for (auto _ : state) {
+        const Query& x = q[i];
+        const int hit = mpr ? ccdMPRIntersect(&x.a, &x.b, &c) : ccdGJKIntersect(&x.a, &x.b, &c);
+        benchmark::DoNotOptimize(hit);
+        i = (i + 1) % q.size();
+    }
+}
+
+void scenarios(benchmark::internal::Benchmark* b) {
+    b->ArgName("scenario");
+    for (int s : {BoxBox, Hull32, CylinderCone, SphereCapsule}) b->Arg(s);
+}
+
+}  // namespace
+
+// scenario: 0 box/box, 1 hull32/hull32, 2 cylinder/cone, 3 sphere/capsule.
+BENCHMARK(BM_KairosDistance)->Apply(scenarios);
+BENCHMARK(BM_FclDistanceGstIndep)->Apply(scenarios);
+BENCHMARK(BM_BulletF64Distance)->Apply(scenarios);
+// cached: 0 fresh start, 1 the axis cached from this query's previous run.
+BENCHMARK(BM_KairosIntersect)->ArgName("cached")->Arg(0)->Arg(1);
+// mpr: 0 ccdGJKIntersect, 1 ccdMPRIntersect.
+BENCHMARK(BM_LibccdIntersect)->ArgName("mpr")->Arg(0)->Arg(1);
+
+BENCHMARK_MAIN();
