@@ -64,14 +64,10 @@ private:
     double angle_ = 0;
 };
 
-// Support of a disk of `radius` centred at the origin, perpendicular to unit `normal`. A
-// direction parallel to the normal has every disk point as a maximiser; the centre is returned
-// then (a naive normalisation there would make the rotation bound non-conservative).
+// Support of a disk of `radius` centred at the origin, perpendicular to unit `normal`.
 inline Vec3 disk_support(Vec3 normal, double radius, Vec3 d) {
-    const Vec3 in_plane = d - dot(d, normal) * normal;
-    const double m = max_abs(in_plane);
-    if (!(m > 1e-300) || !(m > 1e-15 * max_abs(d))) return {};
-    return radius * normalized_or(in_plane, {});
+    const DiskShape disk(normal, radius);
+    return support(disk, d);
 }
 
 }  // namespace kairos

@@ -92,6 +92,9 @@ double extreme_radius(const Shape& s, Vec3 u) {
         }
         case ShapeKind::Transformed:
             return sampled_radius(s, u);
+        case ShapeKind::Disk:
+            // The rim circle always has a point whose component along u is 0: its distance R.
+            return static_cast<const DiskShape&>(s).radius;
     }
     return sampled_radius(s, u);
 }

@@ -25,6 +25,8 @@ enum class ShapeKind : uint8_t {
     Transformed,  // x -> linear * x + translation of a child
     MinkowskiSum, // a + b
     HullOfTwo,    // conv(a u b)
+    Disk,         // radius about the origin, perpendicular to a unit normal: internal, the
+                  // rotation bound of a turning shape (ALGORITHMS.md §4); not in the C API
 };
 
 // Base of every shape. Reference counted (atomic), immutable after construction. Composites
@@ -118,6 +120,13 @@ struct HullOfTwoShape final : Shape {
     const Shape* b;
 };
 
+// A flat disk of `radius` centred at the origin, perpendicular to unit `normal`.
+struct DiskShape final : Shape {
+    DiskShape(Vec3 n, double r) : Shape(ShapeKind::Disk), normal(n), radius(r) {}
+    Vec3 normal;
+    double radius;
+};
+
 // Sign used by supports: +1 for zero, so a zero direction still yields a point of the shape.
 inline double support_sign(double v) { return v < 0 ? -1.0 : 1.0; }
 
@@ -174,6 +183,15 @@ inline Vec3 support(const Shape& s, Vec3 d) {
             const auto& h = static_cast<const HullOfTwoShape&>(s);
             const Vec3 pa = support(*h.a, d), pb = support(*h.b, d);
             return dot(d, pb) > dot(d, pa) ? pb : pa;
+        }
+        case ShapeKind::Disk: {
+            // A direction (nearly) along the normal has every disk point as a maximiser: return
+            // the centre there; normalising the tiny in-plane rest would make the bound unsafe.
+            const auto& k = static_cast<const DiskShape&>(s);
+            const Vec3 in_plane = d - dot(d, k.normal) * k.normal;
+            const double m = max_abs(in_plane);
+            if (!(m > 1e-300) || !(m > 1e-15 * max_abs(d))) return {};
+            return k.radius * normalized_or(in_plane, {});
         }
     }
     return {};

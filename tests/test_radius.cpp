@@ -117,3 +117,21 @@ TEST(ExtremeRadius, ClosedForms) {
     // Axis length does not matter.
     EXPECT_DOUBLE_EQ(extreme_radius(*cyl, {0, 0, 7}), 1.0);
 }
+
+TEST(ExtremeRadius, DiskAndFattenedShapes) {
+    // The rotation bound's disk, alone and summed with a shape, against the sampled definition.
+    std::mt19937_64 rng(99);
+    std::normal_distribution<double> g;
+    for (int i = 0; i < 50; ++i) {
+        const Vec3 n = normalized_or({g(rng), g(rng), g(rng)}, {0, 0, 1});
+        const Vec3 u = normalized_or({g(rng), g(rng), g(rng)}, {0, 0, 1});
+        Ref disk(new DiskShape(n, 0.6));
+        Ref box(new BoxShape({0.5, 0.2, 0.9}));
+        Ref fat(new MinkowskiSumShape(*box, *disk));
+        SCOPED_TRACE(i);
+        EXPECT_DOUBLE_EQ(extreme_radius(*disk, u), 0.6);
+        const double truth = sampled_lower_bound(*fat, u);
+        EXPECT_GE(extreme_radius(*fat, u), truth * (1 - 1e-12));
+        EXPECT_LE(extreme_radius(*fat, u), truth / std::cos(std::numbers::pi / 4096) * (1 + 1.3e-3));
+    }
+}
