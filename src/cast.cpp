@@ -404,6 +404,15 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
     return out;
 }
 
+// The normal of the latest clipping plane. With a radius the final v (x minus the core's closest
+// point, about the radius long) is the normal of the rounded shape's support plane through the
+// contact, exact to the tolerance, while the last clip may be an iteration older; it is used then.
+Vec3 contact_normal(const LocalCast& l, double margin, Vec3 fallback) {
+    if (!l.clipped) return fallback;
+    if (margin > 0 && dot(l.v, l.v) > 0.25 * margin * margin && dot(l.v, l.normal) > 0) return normalized_or(l.v, fallback);
+    return normalized_or(l.normal, fallback);
+}
+
 // A first search direction: x - c for some c of C. Against the ray (-r) the first support is C's
 // point nearest the ray's start along r, whose plane is usually the first clip.
 Vec3 first_direction(Vec3 r, Vec3 toward_x) {
@@ -435,7 +444,7 @@ CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 tran
     out.toi = l.lambda;
     // Start inside: -r, or from the shape's origin toward the ray's start, or +z.
     const Vec3 fallback = normalized_or(-r, normalized_or(s, {0, 0, 1}));
-    const Vec3 n = l.clipped ? normalized_or(l.normal, fallback) : fallback;
+    const Vec3 n = contact_normal(l, c.radius, fallback);
     // Point on the surface: the core's closest point pushed out by the radius along v.
     Vec3 p = l.point_a;
     if (c.radius > 0) p += c.radius * normalized_or(l.v, n);
@@ -473,7 +482,7 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
     out.toi = l.lambda;
     // Overlap at the start: -r, or from A's origin toward B's, or +z.
     const Vec3 fallback = normalized_or(-r, normalized_or(t, {0, 0, 1}));
-    const Vec3 n = l.clipped ? normalized_or(l.normal, fallback) : fallback;
+    const Vec3 n = contact_normal(l, margin, fallback);
     // Contact point: the cores' barycentric points pushed out by their radii along v (from A toward
     // B), each moved to its place at toi; they agree within the tolerance, the midpoint is taken.
     const Vec3 dir = margin > 0 ? normalized_or(l.v, n) : n;
