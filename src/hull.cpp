@@ -39,25 +39,34 @@
 
 namespace kairos {
 
+namespace {
+// A hull that climbs stores first its vertices extreme along the 26 directions of
+// {-1, 0, 1}^3 \ {0} (the "seeds"; fewer when some coincide, then padded with other vertices).
+// Its support starts climbing from the best seed, a few edges from the answer.
+constexpr size_t kSeedDirections = 26;
+
+// Index of the best of vertices[0, n) for d; strict comparisons: ties and NaN keep the earlier.
+size_t best_of(const std::vector<Vec3>& vertices, size_t n, Vec3 d, double& out_score) {
+    size_t best = 0;
+    out_score = dot(d, vertices[0]);
+    for (size_t i = 1; i < n; ++i) {
+        const double score = dot(d, vertices[i]);
+        if (score > out_score) {
+            out_score = score;
+            best = i;
+        }
+    }
+    return best;
+}
+}  // namespace
+
 Vec3 ConvexHullShape::support(Vec3 d) const {
     if (vertices.empty()) return {};
-    // Comparisons are strict and NaN-false: ties and NaN keep the earlier vertex.
-    if (neighbor_offsets.empty()) {
-        size_t best = 0;
-        double best_score = dot(d, vertices[0]);
-        for (size_t i = 1; i < vertices.size(); ++i) {
-            const double score = dot(d, vertices[i]);
-            if (score > best_score) {
-                best_score = score;
-                best = i;
-            }
-        }
-        return vertices[best];
-    }
+    double best_score = 0;
+    if (neighbor_offsets.empty()) return vertices[best_of(vertices, vertices.size(), d, best_score)];
     // Steepest ascent over the edge graph: on a convex polytope a vertex with no better
     // neighbour maximises the linear function d.x globally. Scores only increase, so it stops.
-    uint32_t current = 0;
-    double best_score = dot(d, vertices[0]);
+    auto current = static_cast<uint32_t>(best_of(vertices, std::min(kSeedDirections, vertices.size()), d, best_score));
     for (;;) {
         uint32_t next = current;
         for (uint32_t k = neighbor_offsets[current]; k < neighbor_offsets[current + 1]; ++k) {
@@ -535,14 +544,35 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
         if (orient(p[a], p[b], p[c], p[d]).sign > 0) std::swap(tetra[1], tetra[2]);
     }
 
+    // Vertex order: input order; a climbing hull puts its seeds first (then input order).
+    const bool climbs = hull_vertices.size() > ConvexHullShape::kHillClimbThreshold;
+    std::vector<uint32_t> order;
+    order.reserve(hull_vertices.size());
+    std::vector<uint8_t> placed(count, 0);
+    if (climbs) {
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    if (dx == 0 && dy == 0 && dz == 0) continue;
+                    const Vec3 dir{double(dx), double(dy), double(dz)};
+                    uint32_t best = hull_vertices[0];
+                    for (uint32_t i : hull_vertices)
+                        if (dot(dir, p[i]) > dot(dir, p[best])) best = i;
+                    if (!placed[best]) order.push_back(best);
+                    placed[best] = 1;
+                }
+    }
+    for (uint32_t i : hull_vertices)
+        if (!placed[i]) order.push_back(i);
+
     auto shape = std::make_unique<ConvexHullShape>();
-    shape->vertices.reserve(hull_vertices.size());
+    shape->vertices.reserve(order.size());
     std::vector<uint32_t> index_of(count, kNone);
-    for (uint32_t i : hull_vertices) {
+    for (uint32_t i : order) {
         index_of[i] = static_cast<uint32_t>(shape->vertices.size());
         shape->vertices.push_back(points[i]);
     }
-    if (hull_vertices.size() > ConvexHullShape::kHillClimbThreshold) {
+    if (climbs) {
         // Edge graph in compressed rows, neighbours of each vertex in increasing order.
         const size_t nv = hull_vertices.size();
         auto& offsets = shape->neighbor_offsets;

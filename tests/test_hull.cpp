@@ -469,13 +469,42 @@ TEST(HullDeterminism, SameInputSameHull) {
     EXPECT_TRUE(a.shape->vertices == b.shape->vertices);
     EXPECT_EQ(a.shape->neighbor_offsets, b.shape->neighbor_offsets);
     EXPECT_EQ(a.shape->neighbors, b.shape->neighbors);
-    // Vertices keep the input order.
+    // A climbing hull starts with the points extreme along the 26 directions of {-1,0,1}^3 \ 0
+    // (its climbing seeds); the other vertices keep the input order.
+    const auto& verts = a.shape->vertices;
+    ASSERT_GT(verts.size(), 26u);
+    std::vector<Vec3> seeds;
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+                if (dx == 0 && dy == 0 && dz == 0) continue;
+                const Vec3 dir{double(dx), double(dy), double(dz)};
+                const auto best = std::max_element(pts.begin(), pts.end(), [&](Vec3 x, Vec3 y) { return dot(dir, x) < dot(dir, y); });
+                seeds.push_back(*best);
+                EXPECT_NE(std::find(verts.begin(), verts.begin() + 26, *best), verts.begin() + 26) << "seed not first";
+            }
     size_t at = 0;
-    for (const Vec3& v : a.shape->vertices) {
+    for (const Vec3& v : verts) {
+        if (std::find(seeds.begin(), seeds.end(), v) != seeds.end()) continue;
         while (at < pts.size() && !(pts[at] == v)) ++at;
         ASSERT_LT(at, pts.size()) << "vertices out of input order";
     }
     expect_supports_match(*a.shape, pts, rng, 500);
+}
+
+TEST(HullDeterminism, SmallHullsKeepInputOrder) {
+    Rng rng(kSeed + 850);
+    SCOPED_TRACE("seed " + std::to_string(kSeed + 850));
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 20; ++i) pts.push_back(random_unit(rng));
+    for (int i = 0; i < 200; ++i) pts.push_back(0.5 * random_unit(rng));
+    std::shuffle(pts.begin(), pts.end(), rng);
+    HullHolder hull(pts);
+    ASSERT_EQ(hull.status, HullStatus::Ok);
+    std::vector<Vec3> expected;  // the 20 points on the unit sphere, in input order
+    for (const Vec3& p : pts)
+        if (length(p) > 0.75) expected.push_back(p);
+    EXPECT_TRUE(hull.shape->vertices == expected);
 }
 
 TEST(HullLarge, HundredThousandPoints) {
