@@ -1,5 +1,6 @@
 // C API pair queries: distance, intersection, ray cast, shape cast, motion cast.
 #include "boundary.hpp"
+#include "cast.hpp"
 #include "gjk.hpp"
 
 using namespace kairos;
@@ -16,6 +17,22 @@ static_assert(int32_t(Termination::NoProgress) == KAIROS_TERMINATION_NO_PROGRESS
 static_assert(int32_t(Termination::MaxIterations) == KAIROS_TERMINATION_MAX_ITERATIONS);
 static_assert(int32_t(Termination::Separated) == KAIROS_TERMINATION_SEPARATED);
 static_assert(int32_t(Termination::Hit) == KAIROS_TERMINATION_HIT);
+
+namespace {
+
+// A cast result in the C layout (written to the caller only after the query succeeded).
+kairos_cast_result to_c(const CastResult& r) {
+    kairos_cast_result c;
+    c.hit = r.hit ? 1 : 0;
+    c.toi = r.toi;
+    c.point = kairos::capi::to_c(r.point);
+    c.normal = kairos::capi::to_c(r.normal);
+    c.iterations = r.iterations;
+    c.termination = static_cast<int32_t>(r.termination);
+    return c;
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -76,12 +93,12 @@ KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pos
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(s, fn, "s");
-        read_pose(pose, fn, "pose");
-        read_vec3(origin, fn, "origin");
-        read_vec3(translation, fn, "translation");
-        read_query_settings(settings, fn, "settings");
+        const BodyPose p = read_pose(pose, fn, "pose");
+        const Vec3 o = read_vec3(origin, fn, "origin");
+        const Vec3 t = read_vec3(translation, fn, "translation");
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
+        *out = to_c(kairos::ray_cast(shape_of(s), p.rigid(), o, t, qs.tolerance, qs.max_iterations));
     });
 }
 
@@ -91,14 +108,15 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(a, fn, "a");
-        read_pose(pose_a, fn, "pose_a");
-        read_vec3(translation_a, fn, "translation_a");
+        const BodyPose pa = read_pose(pose_a, fn, "pose_a");
+        const Vec3 ta = read_vec3(translation_a, fn, "translation_a");
         require_pointer(b, fn, "b");
-        read_pose(pose_b, fn, "pose_b");
-        read_vec3(translation_b, fn, "translation_b");
-        read_query_settings(settings, fn, "settings");
+        const BodyPose pb = read_pose(pose_b, fn, "pose_b");
+        const Vec3 tb = read_vec3(translation_b, fn, "translation_b");
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
+        *out = to_c(kairos::shape_cast(shape_of(a), pa.rigid(), ta, shape_of(b), pb.rigid(), tb, qs.tolerance,
+                                       qs.max_iterations));
     });
 }
 

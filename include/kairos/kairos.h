@@ -43,7 +43,7 @@
  * Determinism. The same inputs on the same build give bit-identical results.
  *
  * Not yet built. The contract is fixed before the algorithms: in this version
- * kairos_distance, kairos_intersect, kairos_ray_cast, kairos_shape_cast, kairos_motion_cast and
+ * kairos_distance, kairos_intersect, kairos_motion_cast and
  * kairos_world_step check every argument (bad input gets its own status) and then return
  * KAIROS_ERROR_NOT_IMPLEMENTED; later 0.x versions build them without changing the contract.
  */
@@ -240,13 +240,32 @@ KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pos
 KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* pose_a,
                                     const kairos_shape* b, const kairos_pose* pose_b,
                                     kairos_vec3* axis_cache, int32_t* out);
-/* First hit of the ray origin + lambda * translation, lambda in [0, 1], on s at pose.
- * toi is lambda; normal is outward from the shape. A ray starting inside: hit, toi 0. */
+/* First hit of the ray origin + lambda * translation, lambda in [0, 1], on s at pose (GJK ray
+ * cast: each support plane that separates the ray point from the shape clips the ray).
+ * toi is lambda, never later than the true hit by more than the tolerance and never a missed hit;
+ * the iteration stops when the ray point is within tolerance times the shape's size (seen from
+ * the ray point) of the surface. normal: unit, outward from the shape at the hit (the latest
+ * clipping plane; for spheres and capsules the radius direction at the hit). point: the hit point
+ * on the surface, world frame. A ray starting inside (or on the surface): hit, toi 0, normal
+ * -translation (unit), or for a zero translation the unit direction from the shape's local origin
+ * toward the ray's origin (+z when they coincide). No hit: hit 0, toi 1, point and normal
+ * unspecified. Curved shapes (cylinders, cones) converge to about 1e-7 of their size in double
+ * precision; a tighter tolerance stops there, early rather than late. */
 KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pose,
                                    kairos_vec3 origin, kairos_vec3 translation,
                                    const kairos_query_settings* settings, kairos_cast_result* out);
-/* a translates by translation_a and b by translation_b over the step, from their poses; first
- * time of impact in [0, 1], with normal from A toward B and the contact point at toi. */
+/* a translates by translation_a and b by translation_b over the step, from their poses: the
+ * first time of impact in [0, 1] (a ray from the origin along translation_b - translation_a cast
+ * onto A - B, computed in a's frame so positions far from the world origin keep their precision).
+ * toi: never later than the true first contact by more than the tolerance, never a missed
+ * contact. normal: unit, from A toward B (the latest clipping plane; normal . (translation_b -
+ * translation_a) < 0). point: the contact point at toi, world frame (from the final simplex's
+ * barycentric coordinates). Shapes that overlap or touch at the start: hit 1, toi 0, and normal
+ * = -(translation_b - translation_a), unit: the contact opposes the relative motion as every
+ * later contact does, so a solver that removes the approach velocity along the normal stops the
+ * motion into the overlap (it is not a minimum-penetration direction); with no relative motion
+ * it is the unit direction from A's local origin toward B's (+z when they coincide). No hit:
+ * hit 0, toi 1, point and normal unspecified. */
 KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* pose_a, kairos_vec3 translation_a,
                                      const kairos_shape* b, const kairos_pose* pose_b, kairos_vec3 translation_b,
                                      const kairos_query_settings* settings, kairos_cast_result* out);
