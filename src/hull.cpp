@@ -515,33 +515,41 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
         // Dropping a vertex can leave a neighbour on a flat spot, hence the rounds; exactly flat
         // spots all go in the first one. The cap is a guard: the last round keeps every vertex.
         const bool last = attempt == 4;
-        hull_vertices.clear();
-        bool dropped = false;
+        std::vector<uint32_t> kept, all;
         for (uint32_t i = 0; i < count; ++i) {
             if (!on_hull[i]) continue;
-            if (bends[i] >= 3 || last) hull_vertices.push_back(i);
-            else dropped = true;
+            all.push_back(i);
+            if (bends[i] >= 3 || last) kept.push_back(i);
         }
-        if (!dropped) break;
-        ids = hull_vertices;
-        // The tetrahedron may have used a dropped point: pick a new one among the vertices.
-        const uint32_t a = ids[0];
-        uint32_t b = ids[0];
-        for (uint32_t i : ids)
+        if (kept.size() == all.size()) {
+            hull_vertices = std::move(kept);
+            break;
+        }
+        // The tetrahedron may have used a dropped point: pick a new one among the kept.
+        const uint32_t a = kept.empty() ? all[0] : kept[0];
+        uint32_t b = a, d = a;
+        for (uint32_t i : kept)
             if (length_sq(p[i] - p[a]) > length_sq(p[b] - p[a])) b = i;
         double unused = 0;
-        const uint32_t c = farthest_from_line(p, ids, p[a], p[b], unused);
-        uint32_t d = a;
+        const uint32_t c = kept.empty() ? a : farthest_from_line(p, kept, p[a], p[b], unused);
         double best = 0;
-        for (uint32_t i : ids) {
+        for (uint32_t i : kept) {
             const double v = std::fabs(orient(p[a], p[b], p[c], p[i]).value);
             if (v > best) {
                 best = v;
                 d = i;
             }
         }
+        const int side = orient(p[a], p[b], p[c], p[d]).sign;
+        if (side == 0) {
+            // Cannot happen to a set thicker than kFlatTolerance (dropping only removes points
+            // within ~kThinTolerance of the rest); a guard: keep this round's hull whole.
+            hull_vertices = std::move(all);
+            break;
+        }
+        ids = std::move(kept);
         tetra = {a, b, c, d};
-        if (orient(p[a], p[b], p[c], p[d]).sign > 0) std::swap(tetra[1], tetra[2]);
+        if (side > 0) std::swap(tetra[1], tetra[2]);
     }
 
     // Vertex order: input order; a climbing hull puts its seeds first (then input order).
