@@ -43,8 +43,8 @@
  * Determinism. The same inputs on the same build give bit-identical results.
  *
  * Not yet built. The contract is fixed before the algorithms: in this version
- * kairos_distance, kairos_intersect, kairos_motion_cast and
- * kairos_world_step check every argument (bad input gets its own status) and then return
+ * kairos_distance, kairos_intersect and kairos_motion_cast
+ * check every argument (bad input gets its own status) and then return
  * KAIROS_ERROR_NOT_IMPLEMENTED; later 0.x versions build them without changing the contract.
  */
 
