@@ -10,18 +10,17 @@ using namespace kairos::capi;
 
 // The handle behind kairos_world: the core world plus what the C API hands out by pointer.
 struct kairos_world {
+    explicit kairos_world(const WorldSettings& settings) : core(settings) {}
     World core;
-    int32_t broad_phase = KAIROS_BROAD_PHASE_SPACETIME_SAP;
-    QuerySettings query{};
-    std::vector<kairos_contact> contacts;  // the core's contacts in C layout, valid until the next change
+    std::vector<kairos_contact> contacts;  // the core's contacts in C layout, valid until the next step
 };
 
 namespace {
 
 BodyState state_of(const BodyPose& p) { return {p.position, p.orientation}; }
 
-World::Object& live_object(kairos_world* w, kairos_object_id id, const char* function) {
-    World::Object* o = w->core.find(id);
+const World::Object& live_object(const kairos_world* w, kairos_object_id id, const char* function) {
+    const World::Object* o = w->core.find(id);
     if (o == nullptr)
         fail(KAIROS_ERROR_STALE_ID, function, "id %llu is %s", static_cast<unsigned long long>(id),
              id == 0 ? "0, which is never a valid id" : "not a live object of this world (unknown or removed)");
@@ -53,10 +52,13 @@ KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, ka
             fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "settings->broad_phase %d is not a KAIROS_BROAD_PHASE_* value", bp);
         const QuerySettings qs = read_query_settings(&settings->query, fn, "settings->query");
         require_pointer(out, fn, "out");
-        auto* w = new kairos_world;
-        w->broad_phase = bp;
-        w->query = qs;
-        *out = w;
+        WorldSettings ws;
+        ws.broad_phase = bp == KAIROS_BROAD_PHASE_ENCAPSULATING_SAP ? BroadPhaseKind::EncapsulatingSap
+                         : bp == KAIROS_BROAD_PHASE_BRUTE_FORCE    ? BroadPhaseKind::BruteForce
+                                                                   : BroadPhaseKind::SpacetimeSap;
+        ws.tolerance = qs.tolerance;
+        ws.max_iterations = qs.max_iterations;
+        *out = new kairos_world(ws);
     });
 }
 
@@ -89,12 +91,9 @@ KAIROS_API int32_t kairos_world_set_pose(kairos_world* w, kairos_object_id id, c
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(w, fn, "w");
-        World::Object& o = live_object(w, id, fn);
+        live_object(w, id, fn);
         require_pointer(pose, fn, "pose");
-        const BodyState p = state_of(read_pose(pose, fn, "pose"));
-        o.pose = p;
-        o.end = p;
-        o.moving = false;
+        w->core.set_pose(id, state_of(read_pose(pose, fn, "pose")));
     });
 }
 
@@ -102,10 +101,9 @@ KAIROS_API int32_t kairos_world_move(kairos_world* w, kairos_object_id id, const
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(w, fn, "w");
-        World::Object& o = live_object(w, id, fn);
+        live_object(w, id, fn);
         require_pointer(end, fn, "end");
-        o.end = state_of(read_pose(end, fn, "end"));
-        o.moving = true;
+        w->core.move(id, state_of(read_pose(end, fn, "end")));
     });
 }
 
@@ -113,7 +111,20 @@ KAIROS_API int32_t kairos_world_step(kairos_world* w) {
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(w, fn, "w");
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
+        w->core.step();
+        const std::vector<Contact>& cs = w->core.contacts();
+        w->contacts.resize(cs.size());
+        for (size_t i = 0; i < cs.size(); ++i) {
+            const Contact& c = cs[i];
+            kairos_contact& k = w->contacts[i];
+            k.a = c.a;
+            k.b = c.b;
+            k.user_a = c.user_a;
+            k.user_b = c.user_b;
+            k.toi = c.toi;
+            k.point = to_c(c.point);
+            k.normal = to_c(c.normal);
+        }
     });
 }
 
@@ -134,8 +145,8 @@ KAIROS_API int32_t kairos_world_overlaps(const kairos_world* w, const kairos_obj
         require_pointer(w, fn, "w");
         require_pointer(pairs, fn, "pairs");
         require_pointer(count, fn, "count");
-        *pairs = w->core.overlaps.data();
-        *count = w->core.overlaps.size() / 2;
+        *pairs = w->core.overlap_ids().data();
+        *count = w->core.overlap_ids().size() / 2;
     });
 }
 
@@ -152,7 +163,7 @@ KAIROS_API int32_t kairos_world_step_stats(const kairos_world* w, kairos_step_st
         require_pointer(out, fn, "out");
         if (out->struct_size < sizeof(uint32_t))
             fail(KAIROS_ERROR_STRUCT_SIZE, fn, "out->struct_size is %u; call kairos_step_stats_init", out->struct_size);
-        const StepCounters& c = w->core.counters;
+        const StepCounters& c = w->core.counters();
         kairos_step_stats full;
         kairos_step_stats_init(&full);
         full.broad_phase_pairs = c.broad_phase_pairs;

@@ -1,43 +1,98 @@
-// The world's object table (see world.hpp).
+// The world and its step (see world.hpp): boxes over the step, broad phase, narrow phase.
 #include "world.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <limits>
 
+#include "cast.hpp"
+#include "gjk.hpp"
+#include "motion.hpp"
+#include "radius.hpp"
+
 namespace kairos {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Pose rigid(const BodyState& s) { return make_pose(s.position, s.orientation); }
+
+// Grows a box by `m` on every side.
+Aabb grown(const Aabb& b, double m) { return {b.min - Vec3{m, m, m}, b.max + Vec3{m, m, m}}; }
+
+Aabb shifted(const Aabb& b, Vec3 d) { return {b.min + d, b.max + d}; }
+
+bool contains(const Aabb& outer, const Aabb& inner) {
+    for (int k = 0; k < 3; ++k) {
+        if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
+    }
+    return true;
+}
+
+double max_extent(const Aabb& b) { return max_abs(b.max - b.min); }
+
+// Margin added to every box: the casts report a hit once the shapes are within `tolerance`
+// times their size (C_API.md "Tolerances"), so boxes that stay that far apart must still meet;
+// and a few ulps of the coordinates for the rounding of the support points.
+double box_margin(const Aabb& b, double tolerance) {
+    return tolerance * max_extent(b) + 8 * kEps * std::fmax(max_abs(b.min), max_abs(b.max));
+}
+
+}  // namespace
+
+World::World(const WorldSettings& settings) : settings_(settings), broad_(BroadPhase::create(settings.broad_phase)) {}
 
 World::~World() {
     for (Object& o : objects_)
         if (o.alive) o.shape->release();
 }
 
+Aabb World::tight_box(const Shape& shape, const BodyState& pose, Vec3 translation) const {
+    Aabb b;
+    bounds(shape, rigid(pose), b.min, b.max);
+    return grown(b, box_margin(b, settings_.tolerance) + settings_.tolerance * max_abs(translation));
+}
+
 uint64_t World::add(const Shape& shape, const BodyState& pose, uint64_t user_data) {
     // Room for this slot's later removal, taken now so that remove() never allocates.
     if (free_slots_.capacity() < objects_.size() + 1)
         free_slots_.reserve(std::max<size_t>(2 * free_slots_.capacity(), objects_.size() + 1));
+    const Aabb box = tight_box(shape, pose, {});
     uint32_t index;
+    bool appended = false;
     if (!free_slots_.empty()) {
         index = free_slots_.back();
     } else {
-        if (objects_.size() >= std::numeric_limits<uint32_t>::max()) return 0;
+        if (objects_.size() > BroadPhase::kMaxId) return 0;
         objects_.emplace_back();  // may throw; nothing has changed yet
+        appended = true;
         index = static_cast<uint32_t>(objects_.size() - 1);
     }
-    if (!free_slots_.empty()) free_slots_.pop_back();
+    try {
+        broad_->add(index, box, false);
+    } catch (...) {
+        if (appended) objects_.pop_back();
+        throw;
+    }
+    if (!appended) free_slots_.pop_back();
     Object& o = objects_[index];
     shape.retain();
     o.shape = &shape;
     o.pose = pose;
     o.end = pose;
+    o.box = box;
     o.moving = false;
+    o.loose = false;
     o.user_data = user_data;
     o.alive = true;
     ++live_;
     return make_id(index, o.generation);
-}
-
-World::Object* World::find(uint64_t id) {
-    return const_cast<Object*>(static_cast<const World*>(this)->find(id));
 }
 
 const World::Object* World::find(uint64_t id) const {
@@ -49,18 +104,293 @@ const World::Object* World::find(uint64_t id) const {
     return &o;
 }
 
-void World::remove(uint64_t id) {
-    Object* o = find(id);
-    if (o == nullptr) return;
+World::Object* World::find_mutable(uint64_t id) { return const_cast<Object*>(find(id)); }
+
+bool World::remove(uint64_t id) {
+    Object* o = find_mutable(id);
+    if (o == nullptr) return false;
+    const uint32_t index = index_of(id);
+    broad_->remove(index);
     o->shape->release();
     o->shape = nullptr;
     o->alive = false;
+    o->moving = false;
+    o->loose = false;
     --live_;
-    const uint32_t index = static_cast<uint32_t>(id & 0xffffffffu);
     // A slot whose generation would wrap is retired, so no old id can ever match it again.
-    if (o->generation == std::numeric_limits<uint32_t>::max()) return;
+    if (o->generation == std::numeric_limits<uint32_t>::max()) return true;
     ++o->generation;
     free_slots_.push_back(index);  // never allocates: add() reserved the room
+    return true;
+}
+
+bool World::set_pose(uint64_t id, const BodyState& pose) {
+    Object* o = find_mutable(id);
+    if (o == nullptr) return false;
+    const Aabb box = tight_box(*o->shape, pose, {});
+    broad_->teleport(index_of(id), box);
+    o->pose = pose;
+    o->end = pose;
+    o->box = box;
+    o->moving = false;
+    o->loose = false;
+    return true;
+}
+
+bool World::move(uint64_t id, const BodyState& end) {
+    Object* o = find_mutable(id);
+    if (o == nullptr) return false;
+    if (!o->moving) moved_.push_back(index_of(id));  // may throw; nothing has changed yet
+    o->end = end;
+    o->moving = true;
+    return true;
+}
+
+// The motion of a moving object over the step and its boxes at t = 0 and t = 1, each coordinate
+// linear in between, holding the shape at every moment of the step.
+// Translation only: the tight boxes at both ends (a box translated linearly is exact).
+// Turning (ALGORITHMS.md §4): relative to its origin the shape at time t lies in its start
+// shape grown by the disk of radius 2 rho sin(angle / 2) perpendicular to the axis, and also in
+// its end shape grown by that disk (turning back from the end); and within the ball of radius
+// sqrt(rho^2 + h^2) (h the extent along the axis). The box of the intersection of the three,
+// carried along by the origin's linear motion, holds the shape throughout.
+World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) const {
+    const Motion motion(o.pose, o.end);
+    Sweep s;
+    s.start = rigid(o.pose);
+    s.translation = motion.linear();
+    if (!motion.rotates()) {
+        *out_start = o.box;
+        *out_end = tight_box(*o.shape, o.end, s.translation);
+        return s;
+    }
+    s.rotates = true;
+    s.axis = motion.axis();
+    const Vec3 local_axis = s.start.to_local_direction(s.axis);
+    const double rho = extreme_radius(*o.shape, local_axis);
+    s.disk = motion.disk_radius(rho, 0, 1);
+    const double h = std::fmax(dot(local_axis, support(*o.shape, local_axis)), -dot(local_axis, support(*o.shape, -local_axis)));
+    const double ball = std::sqrt(rho * rho + h * h);
+    Aabb rel0, rel1;
+    bounds(*o.shape, Pose{s.start.rotation, {}}, rel0.min, rel0.max);
+    bounds(*o.shape, Pose{to_matrix(o.end.orientation), {}}, rel1.min, rel1.max);
+    Aabb rel;
+    for (int k = 0; k < 3; ++k) {
+        // The disk's half extent along world axis k.
+        const double e = s.disk * std::sqrt(std::fmax(0.0, 1 - s.axis[k] * s.axis[k]));
+        rel.min[k] = std::fmax(-ball, std::fmax(rel0.min[k], rel1.min[k]) - e);
+        rel.max[k] = std::fmin(ball, std::fmin(rel0.max[k], rel1.max[k]) + e);
+        if (!(rel.min[k] <= rel.max[k])) rel.min[k] = rel.max[k] = 0.5 * (rel.min[k] + rel.max[k]);  // rounding
+    }
+    const Aabb start = shifted(rel, o.pose.position);
+    const Aabb end = shifted(rel, o.end.position);
+    const double m = box_margin(start, settings_.tolerance) + box_margin(end, settings_.tolerance) +
+                     settings_.tolerance * max_abs(s.translation);
+    *out_start = grown(start, m);
+    *out_end = grown(end, m);
+    return s;
+}
+
+void World::step() {
+    const auto t0 = std::chrono::steady_clock::now();
+    counters_ = StepCounters{};
+    if (sweeps_.size() < objects_.size()) {
+        sweeps_.resize(objects_.size());
+        swept_.resize(objects_.size(), 0);
+    }
+
+    // Boxes a turn left loose shrink back to the pose once the object stops turning.
+    for (uint32_t index : loose_) {
+        Object& o = objects_[index];
+        if (!o.alive || !o.loose || o.moving) continue;
+        o.box = tight_box(*o.shape, o.pose, {});
+        broad_->teleport(index, o.box);
+        o.loose = false;
+    }
+    loose_.clear();
+
+    // Moving objects: their motion and boxes. Objects that stay still cost nothing here.
+    std::size_t w = 0;
+    for (uint32_t index : moved_) {
+        Object& o = objects_[index];
+        if (!o.alive || !o.moving || swept_[index]) continue;
+        if (o.end.position == o.pose.position && o.end.orientation.x == o.pose.orientation.x &&
+            o.end.orientation.y == o.pose.orientation.y && o.end.orientation.z == o.pose.orientation.z &&
+            o.end.orientation.w == o.pose.orientation.w) {
+            o.moving = false;
+            if (o.loose) {
+                o.box = tight_box(*o.shape, o.pose, {});
+                broad_->teleport(index, o.box);
+                o.loose = false;
+            }
+            continue;
+        }
+        Aabb start, end;
+        sweeps_[index] = sweep_of(o, &start, &end);
+        swept_[index] = 1;
+        moved_[w++] = index;
+        if (!contains(o.box, start)) {
+            broad_->teleport(index, start);
+            o.box = start;
+        }
+        broad_->move(index, end);
+        o.box = end;  // what the broad phase holds after the step
+        ++counters_.moving_objects;
+        if (sweeps_[index].rotates) ++counters_.rotating_objects;
+    }
+    moved_.resize(w);
+
+    const std::vector<BroadPhasePair>& bp_pairs = broad_->step();
+    const BroadPhaseCounters& bc = broad_->counters();
+    counters_.broad_phase_pairs = bc.pairs;
+    counters_.false_positives = bc.false_positives;
+    counters_.swaps = bc.swaps + bc.teleport_swaps;
+    counters_.heap_operations = bc.heap_pushes + bc.heap_pops + bc.heap_updates + bc.heap_removes;
+    const auto t1 = std::chrono::steady_clock::now();
+    counters_.broad_phase_seconds = std::chrono::duration<double>(t1 - t0).count();
+
+    narrow_phase(bp_pairs);
+
+    // Every object moves to its end pose; the pending moves clear.
+    for (uint32_t index : moved_) {
+        Object& o = objects_[index];
+        o.pose = o.end;
+        o.moving = false;
+        swept_[index] = 0;
+        o.loose = sweeps_[index].rotates;
+        if (o.loose) loose_.push_back(index);
+    }
+    moved_.clear();
+    counters_.narrow_phase_seconds = seconds_since(t1);
+}
+
+namespace {
+
+// True when the plane with normal v (from A toward B) separates A and B over the whole step:
+// A's support along v and B's along -v move linearly with the origins (the turns add at most
+// their disks' extents along v), so separation at t = 0 and at t = 1 is separation throughout.
+// `slack` keeps pairs a cast would call touching within its tolerance.
+struct SweptSupport {
+    double lo0, hi0;  // extent along v at t = 0 (turns included)
+    double shift;     // v . translation
+};
+
+SweptSupport swept_support(const Shape& s, const Pose& start, Vec3 translation, bool rotates, Vec3 axis, double disk,
+                           Vec3 v) {
+    SweptSupport r;
+    r.hi0 = dot(v, support(s, start, v));
+    r.lo0 = dot(v, support(s, start, -v));
+    if (rotates) {
+        const Vec3 across = v - dot(v, axis) * axis;
+        const double e = disk * length(across);
+        r.hi0 += e;
+        r.lo0 -= e;
+    }
+    r.shift = dot(v, translation);
+    return r;
+}
+
+}  // namespace
+
+void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
+    contacts_.clear();
+    pairs_.clear();
+    next_axes_.clear();
+    const double tol = settings_.tolerance;
+    const uint32_t max_it = settings_.max_iterations;
+    Sweep still_a, still_b;
+    std::size_t cursor = 0;  // into axes_, sorted by key like bp_pairs
+    for (const BroadPhasePair& p : bp_pairs) {
+        uint32_t ia = p.a, ib = p.b;
+        uint64_t id_a = make_id(ia, objects_[ia].generation), id_b = make_id(ib, objects_[ib].generation);
+        if (id_b < id_a) {
+            std::swap(ia, ib);
+            std::swap(id_a, id_b);
+        }
+        pairs_.push_back({id_a, id_b, p.t_first});
+        const Object& oa = objects_[ia];
+        const Object& ob = objects_[ib];
+        auto sweep = [&](const Object& o, uint32_t index, Sweep& still) -> const Sweep& {
+            if (swept_[index]) return sweeps_[index];
+            still = Sweep{};
+            still.start = rigid(o.pose);
+            return still;
+        };
+        const Sweep& sa = sweep(oa, ia, still_a);
+        const Sweep& sb = sweep(ob, ib, still_b);
+
+        const uint64_t key = (uint64_t{p.a} << 32) | p.b;
+        while (cursor < axes_.size() && axes_[cursor].key < key) ++cursor;
+        Vec3 seed{};
+        if (cursor < axes_.size() && axes_[cursor].key == key && axes_[cursor].id_a == id_a &&
+            axes_[cursor].id_b == id_b) {
+            // A separating axis from an earlier step: if its plane separates the two over the
+            // whole step, there is no contact and no cast is needed.
+            const Vec3 v = axes_[cursor].axis;
+            const SweptSupport a = swept_support(*oa.shape, sa.start, sa.translation, sa.rotates, sa.axis, sa.disk, v);
+            const SweptSupport b = swept_support(*ob.shape, sb.start, sb.translation, sb.rotates, sb.axis, sb.disk, v);
+            const double size = max_extent(oa.box) + max_extent(ob.box) + max_abs(sa.translation) +
+                                max_abs(sb.translation) + max_abs(sb.start.translation - sa.start.translation);
+            const double slack = 4 * tol * size + 16 * kEps * (std::fabs(a.hi0) + std::fabs(b.lo0) + size);
+            // Comparisons written so that NaN never separates.
+            if (a.hi0 + slack < b.lo0 && a.hi0 + a.shift + slack < b.lo0 + b.shift) {
+                ++counters_.axis_rejections;
+                next_axes_.push_back({key, id_a, id_b, v});
+                continue;
+            }
+            seed = v;
+        }
+
+        CastResult r;
+        if (!sa.rotates && !sb.rotates) {
+            r = shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
+        } else {
+            // TEMPORARY rotation path, until src/motion_cast.hpp is committed: one translational
+            // cast of the shapes grown by their whole-step disks (ALGORITHMS.md §4 without the
+            // bisection). A conservative lower bound of the time of impact; a miss proves no
+            // contact, but a hit may be early or even false.
+            const DiskShape disk_a(sa.start.to_local_direction(sa.axis), sa.disk);
+            const DiskShape disk_b(sb.start.to_local_direction(sb.axis), sb.disk);
+            const MinkowskiSumShape grown_a(*oa.shape, disk_a);
+            const MinkowskiSumShape grown_b(*ob.shape, disk_b);
+            const Shape& ca = sa.rotates ? static_cast<const Shape&>(grown_a) : *oa.shape;
+            const Shape& cb = sb.rotates ? static_cast<const Shape&>(grown_b) : *ob.shape;
+            r = shape_cast(ca, sa.start, sa.translation, cb, sb.start, sb.translation, tol, max_it);
+        }
+        ++counters_.narrow_phase_queries;
+        counters_.gjk_iterations += r.iterations;
+        if (r.hit) {
+            contacts_.push_back({id_a, id_b, oa.user_data, ob.user_data, r.toi, r.point, r.normal});
+            next_axes_.push_back({key, id_a, id_b, r.normal});
+        } else {
+            // Missed: keep a separating axis of the end poses (the next step's start) for the
+            // next step, found from the old axis or from the line between the origins.
+            Vec3 axis = seed;
+            if (!(dot(axis, axis) > 0)) axis = (sb.start.translation + sb.translation) - (sa.start.translation + sa.translation);
+            uint32_t it = 0;
+            const BodyState end_a = swept_[ia] ? oa.end : oa.pose;
+            const BodyState end_b = swept_[ib] ? ob.end : ob.pose;
+            if (!gjk_intersect(*oa.shape, rigid(end_a), *ob.shape, rigid(end_b), axis, &it)) {
+                next_axes_.push_back({key, id_a, id_b, axis});
+            }
+            counters_.gjk_iterations += it;
+        }
+    }
+    axes_.swap(next_axes_);
+
+    std::sort(contacts_.begin(), contacts_.end(), [](const Contact& x, const Contact& y) {
+        if (x.toi != y.toi) return x.toi < y.toi;
+        if (x.a != y.a) return x.a < y.a;
+        return x.b < y.b;
+    });
+    std::sort(pairs_.begin(), pairs_.end(),
+              [](const WorldPair& x, const WorldPair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    overlap_ids_.resize(2 * pairs_.size());
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+        overlap_ids_[2 * i] = pairs_[i].a;
+        overlap_ids_[2 * i + 1] = pairs_[i].b;
+    }
+    counters_.contacts = contacts_.size();
 }
 
 }  // namespace kairos

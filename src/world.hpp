@@ -1,10 +1,15 @@
-// The world's object table: objects with shapes, poses and pending moves, addressed by
-// generation-checked ids. The step (broad and narrow phase) builds on this table.
+// The world: objects with shapes, poses and pending moves, addressed by generation-checked ids,
+// and the step that finds each pair's first contact (broad phase, then narrow phase;
+// ALGORITHMS.md §6).
+//
+// Thread safety: none; a world is used by one thread at a time.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "broadphase.hpp"
 #include "math.hpp"
 #include "shape.hpp"
 
@@ -17,16 +22,36 @@ struct BodyState {
     Quat orientation;
 };
 
+// The first contact of a pair in a step. World frame.
 struct Contact {
-    uint64_t a = 0, b = 0;  // a < b
+    uint64_t a = 0, b = 0;  // ids, a < b
     uint64_t user_a = 0, user_b = 0;
-    double toi = 1;
-    Vec3 point, normal;
+    double toi = 1;         // fraction of the step in [0, 1]
+    Vec3 point;             // contact point at toi
+    Vec3 normal;            // unit, from a toward b
 };
 
+// A broad-phase pair of the last step: ids (a < b) and the first moment their boxes overlap.
+struct WorldPair {
+    uint64_t a = 0, b = 0;
+    double t_first = 0;
+};
+
+// Work of the last step.
 struct StepCounters {
     uint64_t broad_phase_pairs = 0, swaps = 0, heap_operations = 0, narrow_phase_queries = 0, gjk_iterations = 0;
     double broad_phase_seconds = 0, narrow_phase_seconds = 0;
+    uint64_t moving_objects = 0;     // objects given a move that changes their pose
+    uint64_t rotating_objects = 0;   // of which turn
+    uint64_t axis_rejections = 0;    // pairs a cached separating axis ruled out without a cast
+    uint64_t false_positives = 0;    // broad-phase pairs whose boxes never overlap (encapsulating)
+    uint64_t contacts = 0;
+};
+
+struct WorldSettings {
+    BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
+    double tolerance = 1e-10;      // relative accuracy of the casts (C_API.md "Tolerances")
+    uint32_t max_iterations = 256; // a guard only
 };
 
 class World {
@@ -35,40 +60,93 @@ public:
         const Shape* shape = nullptr;  // holds one reference while alive
         BodyState pose;                // pose now (start of the next step)
         BodyState end;                 // pose at the end of the next step, when `moving`
+        Aabb box;                      // the broad phase's box now: the tight box at `pose` grown by
+                                       // the margin, or larger after a turn (`loose`)
         bool moving = false;
+        bool loose = false;
         uint64_t user_data = 0;
         uint32_t generation = 1;  // of the current or next occupant of the slot
         bool alive = false;
     };
 
-    World() = default;
+    explicit World(const WorldSettings& settings = {});
     World(const World&) = delete;
     World& operator=(const World&) = delete;
     ~World();
 
+    const WorldSettings& settings() const { return settings_; }
+
     // An id packs the slot index (low 32 bits) and its generation (high 32 bits, >= 1), so 0 is
     // never an id and a removed object's id never matches the slot's next occupant.
     static uint64_t make_id(uint32_t index, uint32_t generation) { return (uint64_t{generation} << 32) | index; }
+    static uint32_t index_of(uint64_t id) { return static_cast<uint32_t>(id & 0xffffffffu); }
 
-    // Adds an object (retains the shape). Returns 0 when no slot can be had (2^32 - 1 objects).
+    // Adds an object (retains the shape) standing still at `pose` (finite, unit quaternion).
+    // Returns 0 when no slot can be had (BroadPhase::kMaxId + 1 slots). Throws std::bad_alloc
+    // with nothing changed.
     uint64_t add(const Shape& shape, const BodyState& pose, uint64_t user_data);
     // The live object with this id, or nullptr for 0, unknown and removed ids.
-    Object* find(uint64_t id);
     const Object* find(uint64_t id) const;
-    // Removes a live object (releases its shape); its id becomes stale.
-    void remove(uint64_t id);
+    // Removes a live object (releases its shape); its id becomes stale. False for a stale id.
+    bool remove(uint64_t id);
+    // Teleports at once, without a sweep, and cancels a pending move. False for a stale id.
+    bool set_pose(uint64_t id, const BodyState& pose);
+    // The pose at the end of the next step (that step only). False for a stale id.
+    bool move(uint64_t id, const BodyState& end);
+
+    // Finds each pair's first contact in [0, 1], then moves every object to its end pose and
+    // clears the pending moves. Fills contacts, pairs and counters.
+    void step();
 
     size_t live_count() const { return live_; }
     const std::vector<Object>& objects() const { return objects_; }
+    const BroadPhase& broad_phase() const { return *broad_; }
 
-    std::vector<Contact> contacts;        // of the last step
-    std::vector<uint64_t> overlaps;       // broad-phase pairs of the last step, 2 ids each
-    StepCounters counters;                // of the last step
+    // Of the last step, valid until the next step.
+    const std::vector<Contact>& contacts() const { return contacts_; }
+    // Broad-phase pairs sorted by (a, b) ids.
+    const std::vector<WorldPair>& pairs() const { return pairs_; }
+    // The same pairs as 2 ids each (the C API hands this out).
+    const std::vector<uint64_t>& overlap_ids() const { return overlap_ids_; }
+    const StepCounters& counters() const { return counters_; }
 
 private:
+    // What the narrow phase needs of an object during one step.
+    struct Sweep {
+        Pose start;          // rigid pose at t = 0
+        Vec3 translation;    // of the local origin over the step
+        Vec3 axis;           // world rotation axis (unit) when turning
+        double disk = 0;     // disk bound of the turn (ALGORITHMS.md §4); 0 when not turning
+        bool rotates = false;
+    };
+    // A separating axis found for a pair, kept for its next step (ALGORITHMS.md §2).
+    struct CachedAxis {
+        uint64_t key;        // slot pair (lower slot << 32 | higher slot)
+        uint64_t id_a, id_b; // the ids it was found for (a slot's next occupant must not use it)
+        Vec3 axis;           // world frame, from id_a's object toward id_b's
+    };
+
+    Aabb tight_box(const Shape& shape, const BodyState& pose, Vec3 translation) const;
+    Object* find_mutable(uint64_t id);
+    Sweep sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) const;
+    void narrow_phase(const std::vector<BroadPhasePair>& bp_pairs);
+
+    WorldSettings settings_;
+    std::unique_ptr<BroadPhase> broad_;
     std::vector<Object> objects_;
     std::vector<uint32_t> free_slots_;
+    std::vector<uint32_t> moved_;   // slots given a move since the last step (may repeat)
+    std::vector<uint32_t> loose_;   // slots whose box is looser than their pose needs
     size_t live_ = 0;
+
+    std::vector<Sweep> sweeps_;     // by slot, filled for moving objects during a step
+    std::vector<uint8_t> swept_;    // by slot: sweeps_ holds this step's motion
+    std::vector<CachedAxis> axes_, next_axes_;
+
+    std::vector<Contact> contacts_;
+    std::vector<WorldPair> pairs_;
+    std::vector<uint64_t> overlap_ids_;
+    StepCounters counters_;
 };
 
 }  // namespace kairos
