@@ -7,8 +7,10 @@
 // out of the intersection test.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
+#include <utility>
 
 #include "math.hpp"
 #include "shape.hpp"
@@ -88,11 +90,23 @@ inline constexpr int kBitCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 
 // The dot products y_i.y_j of the classical recursion enter through u_X, in a form that does not
 // cancel (compute_subset). A slot's entries stay valid while its point stays in the simplex, so
 // adding a point computes only the subsets that contain it.
+// Fixed array of Vec3 left uninitialised on construction (Vec3 zeroes itself by default, and
+// the simplex is built on every query; only entries written by add() are ever read).
+template <int N>
+struct RawVec3s {
+    union {
+        Vec3 v[N];
+    };
+    RawVec3s() {}
+    Vec3& operator[](int i) { return v[i]; }
+    const Vec3& operator[](int i) const { return v[i]; }
+};
+
 struct Simplex {
-    Vec3 y[4], pa[4], pb[4];
+    RawVec3s<4> y, pa, pb;
     double norm_sq[4];      // ||y_i||^2
     double det[16][4];      // Delta_i(X) for X a subset (bit mask) of the points present
-    Vec3 u[16];             // u_X = sum_{i in X} Delta_i(X) y_i, per subset X (see compute_subset)
+    RawVec3s<16> u;         // u_X = sum_{i in X} Delta_i(X) y_i, per subset X (see compute_subset)
     double lambda[4];       // barycentric coordinates of v over `bits`
     unsigned bits = 0;      // current simplex
     unsigned last_all = 0;  // the points of the last add (current simplex and the ones it dropped)
@@ -125,17 +139,14 @@ struct Simplex {
     // sideways by far more than the distance's own error. The determinant form stays as the
     // fallback for degenerate geometry.
     void set_from_subset(unsigned s) {
-        double sum = 0;
-        for (unsigned r = s; r; r &= r - 1) sum += det[s][std::countr_zero(r)];
-        Vec3 p{};
-        for (unsigned r = s; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
-            lambda[i] = det[s][i] / sum;
-            p += lambda[i] * y[i];
-        }
         bits = s;
-        v = p;
         const int count = kBitCount[s];
+        if (count == 1) {
+            const int i = std::countr_zero(s);
+            lambda[i] = 1;
+            v = y[i];
+            return;
+        }
         if (count == 2) {
             const int i = std::countr_zero(s), j = 31 - std::countl_zero(s);
             const Vec3 e = y[j] - y[i];
@@ -145,6 +156,7 @@ struct Simplex {
                 lambda[i] = 1 - t;
                 lambda[j] = t;
                 v = y[i] + t * e;
+                return;
             }
         } else if (count == 3) {
             // The origin projected on the triangle's plane. Besides the coordinates, this keeps v's
@@ -160,8 +172,18 @@ struct Simplex {
                 lambda[j] = dot(cross(qk, qi), n) / nn;
                 lambda[k] = dot(cross(qi, qj), n) / nn;
                 v = q;
+                return;
             }
         }
+        double sum = 0;
+        for (unsigned r = s; r; r &= r - 1) sum += det[s][std::countr_zero(r)];
+        Vec3 p{};
+        for (unsigned r = s; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            lambda[i] = det[s][i] / sum;
+            p += lambda[i] * y[i];
+        }
+        v = p;
     }
 
     // Closest points on A and B (A's frame) from the barycentric coordinates of v.
@@ -184,44 +206,101 @@ struct Simplex {
     // nothing usable was found and the previous v/lambda/bits are kept. `prev_norm_sq` is
     // ||v||^2 before the call: the backup pass must improve on it.
     Outcome add(Vec3 w, Vec3 a, Vec3 b, double prev_norm_sq) {
-        const int last = std::countr_zero(~bits & 15u);
-        const unsigned last_bit = 1u << last;
+        // One instantiation per current simplex (bits 0..14): every subset loop below is unrolled
+        // at compile time.
+        using Fn = Outcome (Simplex::*)(Vec3, Vec3, Vec3, double);
+        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+            return std::array<Fn, 15>{&Simplex::add_from<M>...};
+        }(std::make_integer_sequence<unsigned, 15>{});
+        return (this->*table[bits & 15u])(w, a, b, prev_norm_sq);
+    }
+
+    // Calls f(std::integral_constant<int, i>) for each bit i set in the compile-time mask S.
+    template <unsigned S, class F>
+    static void for_bits(F&& f) {
+        [&]<int... I>(std::integer_sequence<int, I...>) {
+            ((((S >> I) & 1u) ? f(std::integral_constant<int, I>{}) : void()), ...);
+        }(std::make_integer_sequence<int, 4>{});
+    }
+
+    template <unsigned S>
+    void compute_subset_t() {
+        Vec3 us{};
+        for_bits<S>([&](auto mc) {
+            constexpr int m = decltype(mc)::value;
+            constexpr unsigned x = S & ~(1u << m);
+            constexpr int k = std::countr_zero(x);
+            const double d = dot(u[x], y[k] - y[m]);
+            det[S][m] = d;
+            us += d * y[m];
+        });
+        u[S] = us;
+    }
+
+    // Johnson's test for subset S of All; comparisons are written so that NaN fails them.
+    template <unsigned S, unsigned All>
+    bool valid_t() const {
+        bool ok = true;
+        for_bits<S>([&](auto mc) { ok = ok && det[S][decltype(mc)::value] > 0; });
+        for_bits<All & ~S>([&](auto jc) {
+            constexpr int j = decltype(jc)::value;
+            ok = ok && det[S | (1u << j)][j] <= 0;
+        });
+        return ok;
+    }
+
+    template <unsigned Old>
+    Outcome add_from(Vec3 w, Vec3 a, Vec3 b, double prev_norm_sq) {
+        constexpr int last = std::countr_zero(~Old & 15u);
+        constexpr unsigned last_bit = 1u << last;
+        constexpr unsigned all = Old | last_bit;
+        constexpr unsigned n_sub = kSubsets.count[Old];
         y[last] = w;
         pa[last] = a;
         pb[last] = b;
         norm_sq[last] = dot(w, w);
-
         det[last_bit][last] = 1;
         u[last_bit] = w;
-        const unsigned old = bits;
-        const unsigned all = old | last_bit;
         last_all = all;
-        const unsigned n_sub = kSubsets.count[old];
-        for (unsigned t = 1; t < n_sub; ++t) compute_subset(kSubsets.subsets[old][t] | last_bit);
+        // Determinants of every subset holding the new point, smaller subsets first.
+        [&]<size_t... T>(std::index_sequence<T...>) {
+            (compute_subset_t<kSubsets.subsets[Old][T + 1] | last_bit>(), ...);
+        }(std::make_index_sequence<n_sub - 1>{});
 
         // A full tetrahedron: decide by signed volumes (triple products of edge vectors) rather than
-        // by the dot-product determinants, which lose every digit on flat tetrahedra and would report
-        // an intersection for shapes some distance apart.
-        if (all == 15u && origin_in_tetrahedron()) {
-            bits = 15u;
-            v = Vec3{};
-            return Outcome::Full;
+        // by the determinants, which lose every digit on flat tetrahedra and would report an
+        // intersection for shapes some distance apart.
+        if constexpr (all == 15u) {
+            if (origin_in_tetrahedron()) {
+                bits = 15u;
+                v = Vec3{};
+                return Outcome::Full;
+            }
         }
 
         // Johnson's test: the closest sub-simplex holds the new point, has positive determinants,
         // and every point left out has a non-positive determinant in the subset grown by it.
-        // Comparisons are written so that NaN fails them.
-        for (unsigned t = 0; t < n_sub; ++t) {
-            const unsigned s = kSubsets.subsets[old][t] | last_bit;
-            if (s == 15u) continue;  // decided geometrically above
-            if (valid(s, all)) {
-                set_from_subset(s);
-                return Outcome::Reduced;
-            }
-        }
+        const bool found = [&]<size_t... T>(std::index_sequence<T...>) {
+            return (try_subset<kSubsets.subsets[Old][T] | last_bit, all>() || ...);
+        }(std::make_index_sequence<n_sub>{});
+        if (found) return Outcome::Reduced;
+        return backup(all, prev_norm_sq);
+    }
 
-        // Backup: among all subsets with positive determinants (singletons always qualify), the one
-        // whose affine closest point is nearest the origin.
+    template <unsigned S, unsigned All>
+    bool try_subset() {
+        if constexpr (S == 15u) {
+            return false;  // decided geometrically
+        } else {
+            if (!valid_t<S, All>()) return false;
+            set_from_subset(S);
+            return true;
+        }
+    }
+
+    // Backup: among all subsets with positive determinants (singletons always qualify), the one
+    // whose affine closest point is nearest the origin; it must improve on prev_norm_sq.
+    Outcome backup(unsigned all, double prev_norm_sq) {
         double best = prev_norm_sq;
         unsigned best_s = 0;
         for (unsigned s = 1; s < 15u; ++s) {
