@@ -28,13 +28,6 @@ Aabb grown(const Aabb& b, double m) { return {b.min - Vec3{m, m, m}, b.max + Vec
 
 Aabb shifted(const Aabb& b, Vec3 d) { return {b.min + d, b.max + d}; }
 
-bool contains(const Aabb& outer, const Aabb& inner) {
-    for (int k = 0; k < 3; ++k) {
-        if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
-    }
-    return true;
-}
-
 double max_extent(const Aabb& b) { return max_abs(b.max - b.min); }
 
 // Margin added to every box: the casts report a hit once the shapes are within `tolerance`
@@ -159,8 +152,14 @@ World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) co
     Sweep s;
     s.start = rigid(o.pose);
     s.translation = motion.linear();
-    if (!motion.rotates()) {
-        *out_start = o.box;
+    // The same orientation (q or -q) is a translation: q_end * q_start^-1 would round to a turn
+    // by an angle of 1e-16 or so.
+    const Quat a = o.pose.orientation, b = o.end.orientation;
+    const bool same = (a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) ||
+                      (a.x == -b.x && a.y == -b.y && a.z == -b.z && a.w == -b.w);
+    if (same || !motion.rotates()) {
+        // A box left loose by an earlier turn shrinks to the pose first.
+        *out_start = o.loose ? tight_box(*o.shape, o.pose, {}) : o.box;
         *out_end = tight_box(*o.shape, o.end, s.translation);
         return s;
     }
@@ -229,7 +228,7 @@ void World::step() {
         sweeps_[index] = sweep_of(o, &start, &end);
         swept_[index] = 1;
         moved_[w++] = index;
-        if (!contains(o.box, start)) {
+        if (!(start.min == o.box.min && start.max == o.box.max)) {
             broad_->teleport(index, start);
             o.box = start;
         }
