@@ -24,21 +24,29 @@ struct BoxSupport {
     Vec3 h;
     Vec3 operator()(Vec3 d) const { return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z}; }
 };
-// Brute force over a small hull's vertices (the first maximum wins, as in ConvexHullShape).
+// Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
+// branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
+// the dot product. Ties go to the lower index within each half-stream, then to the even one.
 struct SmallHullSupport {
     const Vec3* v;
     size_t n;
     Vec3 operator()(Vec3 d) const {
-        size_t best = 0;
-        double best_dot = dot(d, v[0]);
-        for (size_t i = 1; i < n; ++i) {
-            const double s = dot(d, v[i]);
-            if (s > best_dot) {
-                best_dot = s;
-                best = i;
-            }
+        size_t best0 = 0, best1 = 0;
+        double max0 = dot(d, v[0]), max1 = -INFINITY;
+        size_t i = 1;
+        for (; i + 1 < n; i += 2) {
+            const double s1 = dot(d, v[i]), s0 = dot(d, v[i + 1]);
+            best1 = s1 > max1 ? i : best1;
+            max1 = s1 > max1 ? s1 : max1;
+            best0 = s0 > max0 ? i + 1 : best0;
+            max0 = s0 > max0 ? s0 : max0;
         }
-        return v[best];
+        if (i < n) {
+            const double s1 = dot(d, v[i]);
+            best1 = s1 > max1 ? i : best1;
+            max1 = s1 > max1 ? s1 : max1;
+        }
+        return v[max1 > max0 ? best1 : best0];
     }
 };
 struct GenericSupport {
@@ -160,6 +168,7 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
 template <class Pair>
 bool intersect_loop(const Pair& pair, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
     Simplex s;
+    s.want_lambda = false;
     Vec3 v = io_v;
     double vv = 0;
     const double margin_sq = margin * margin;
@@ -259,6 +268,13 @@ auto with_pair(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& p
 
 Vec3 world_direction(const Pose& pose, Vec3 local) { return pose.rotation * local; }
 
+// a / |a| given |a|^2 (one square root, one division); when a is zero or its square under- or
+// overflows, the careful normalisation of a, then of `fallback`, then +x.
+Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
+    if (norm_sq > 1e-200 && norm_sq < 1e200) return (1 / std::sqrt(norm_sq)) * a;
+    return normalized_or(a, normalized_or(fallback, {1, 0, 0}));
+}
+
 }  // namespace
 
 DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
@@ -282,8 +298,7 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
     r.intersecting = l.intersecting;
     // Axis from A toward B: -v (v = a - b). Without a usable v (intersecting at the origin), the
     // direction between the local origins, or +x.
-    const Vec3 fallback = normalized_or(center_offset, {1, 0, 0});
-    const Vec3 n = normalized_or(-l.v, fallback);
+    const Vec3 n = unit_or(-l.v, l.core_norm_sq, center_offset);
     Vec3 pa = l.point_a, pb = l.point_b;
     if (l.intersecting) {
         r.distance = 0;
@@ -319,7 +334,7 @@ bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pos
         }
         return intersect_loop(pair, margin, v_local, 256, it);
     });
-    if (!hit) io_axis = world_direction(pose_a, normalized_or(-v_local, {1, 0, 0}));
+    if (!hit) io_axis = world_direction(pose_a, unit_or(-v_local, dot(v_local, v_local), {1, 0, 0}));
     if (out_iterations) *out_iterations = it;
     return hit;
 }

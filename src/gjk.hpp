@@ -111,6 +111,7 @@ struct Simplex {
     unsigned bits = 0;      // current simplex
     unsigned last_all = 0;  // the points of the last add (current simplex and the ones it dropped)
     Vec3 v;                 // closest point of the current simplex to the origin
+    bool want_lambda = true;  // false: triangles skip their barycentric coordinates (boolean test)
 
     // True when w equals a point of the last simplex before reduction (rule 5). Any such point y
     // has v.y >= ||v||^2 in exact arithmetic, so rule 1 would have fired: w comes back by rounding
@@ -166,12 +167,14 @@ struct Simplex {
             const Vec3 n = cross(y[j] - y[i], y[k] - y[i]);
             const double nn = dot(n, n);
             if (nn > 0 && std::isfinite(nn)) {
-                const Vec3 q = (dot(n, y[i]) / nn) * n;
-                const Vec3 qi = y[i] - q, qj = y[j] - q, qk = y[k] - q;
-                lambda[i] = dot(cross(qj, qk), n) / nn;
-                lambda[j] = dot(cross(qk, qi), n) / nn;
-                lambda[k] = dot(cross(qi, qj), n) / nn;
+                const double inv = 1 / nn;
+                const Vec3 q = (dot(n, y[i]) * inv) * n;
                 v = q;
+                if (!want_lambda) return;
+                const Vec3 qi = y[i] - q, qj = y[j] - q, qk = y[k] - q;
+                lambda[i] = dot(cross(qj, qk), n) * inv;
+                lambda[j] = dot(cross(qk, qi), n) * inv;
+                lambda[k] = dot(cross(qi, qj), n) * inv;
                 return;
             }
         }
