@@ -189,13 +189,27 @@ struct Simplex {
         v = p;
     }
 
-    // Closest points on A and B (A's frame) from the barycentric coordinates of v.
+    // Closest points on A and B (A's frame) from the barycentric coordinates of v. Coordinates that
+    // rounding pushed below zero (ill-conditioned simplices) are clamped, so the points stay convex
+    // combinations of support points: on their shapes.
     void closest_points(Vec3& out_a, Vec3& out_b) const {
-        Vec3 a{}, b{};
+        double l[4] = {0, 0, 0, 0}, sum = 0;
         for (unsigned r = bits; r; r &= r - 1) {
             const int i = std::countr_zero(r);
-            a += lambda[i] * pa[i];
-            b += lambda[i] * pb[i];
+            l[i] = lambda[i] > 0 ? lambda[i] : 0;
+            sum += l[i];
+        }
+        Vec3 a{}, b{};
+        if (!(sum > 0)) {
+            const int i = std::countr_zero(bits | 16u) & 3;
+            out_a = pa[i];
+            out_b = pb[i];
+            return;
+        }
+        for (unsigned r = bits; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            a += (l[i] / sum) * pa[i];
+            b += (l[i] / sum) * pb[i];
         }
         out_a = a;
         out_b = b;
