@@ -19,9 +19,14 @@
 // when some hull points are not, the hull is rebuilt from the others, which changes neither the
 // solid nor any support value. Two tolerances relative to the set's extent (the widest side of
 // its bounding box), the only ones in this file:
-// - kThinTolerance (1e-12): a point at most that far above every facet is taken as on the hull,
-//   and two adjacent facets whose planes are that close count as one plane. Without it, points
-//   that rounding left a hair outside a face (the face points of a rotated box) would be kept.
+// - kThinTolerance (1e-12; plus 64 ulps of the largest coordinate, the rounding a transform
+//   leaves in a set far from the origin): a point is not kept when it lies within that distance
+//   of the hull of the kept points: during construction, a point barely above some facet planes
+//   but within thin of one of those facets; after it, a point that only looks flat (facet planes
+//   bent by less than thin around it, or the tip of a needle facet) and lies within thin of the
+//   hull of its neighbours (one such drop per neighbourhood per rebuild, at most 6 rebuilds).
+//   Without it, points that rounding left a hair outside a face (the face points of a rotated
+//   box) would be kept. The support is within a few thin of the maximum over all input points.
 // - kFlatTolerance (1e-10): the set is Collinear when every point lies within it of the line
 //   through the two extreme points along the widest axis, and Coplanar when every point lies
 //   within it of the plane through that line and the point farthest from it.
@@ -88,11 +93,8 @@ namespace {
 // above the rounding of the distance computations (~1e-15 of the extent) and far below any
 // shape a caller means as a solid.
 constexpr double kFlatTolerance = 1e-10;
-// Relative tolerance of "on the hull": a point less than kThinTolerance * extent outside the hull
-// of the others is not kept, and two facets whose planes differ by less than that count as one.
-// Exact predicates alone would keep every point that rounding pushed a hair outside a face (the
-// face points of a rotated box). Far above rounding (~1e-16), far below any feature; the
-// support of the hull is within about this distance of the maximum over all input points.
+// Relative tolerance of "on the hull" (see the file comment): far above rounding (~1e-16 of the
+// extent), far below any feature a caller means.
 constexpr double kThinTolerance = 1e-12;
 
 // ---- Exact orientation ------------------------------------------------------------------------
@@ -193,6 +195,23 @@ inline Orientation orient(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
         if (det < -bound) return {det, -1};
     }
     return {det, orient_exact(a, b, c, q)};
+}
+
+// ---- Distances (for tolerance decisions only; rounding here never shapes the mesh) -----------
+
+double point_segment_distance(Vec3 x, Vec3 a, Vec3 b) {
+    const Vec3 ab = b - a;
+    const double len2 = length_sq(ab);
+    const double t = len2 > 0 ? std::clamp(dot(x - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return length(x - (a + t * ab));
+}
+
+double point_triangle_distance(Vec3 x, Vec3 a, Vec3 b, Vec3 c) {
+    const Vec3 n = cross(b - a, c - a);
+    const double n2 = length_sq(n);
+    if (n2 > 0 && dot(cross(b - a, x - a), n) >= 0 && dot(cross(c - b, x - b), n) >= 0 && dot(cross(a - c, x - c), n) >= 0)
+        return std::fabs(dot(x - a, n)) / std::sqrt(n2);  // projects inside: the plane distance
+    return std::min({point_segment_distance(x, a, b), point_segment_distance(x, b, c), point_segment_distance(x, c, a)});
 }
 
 // ---- Quickhull ---------------------------------------------------------------------------------
@@ -296,27 +315,45 @@ private:
     }
 
     // Gives each point to the first face among [first_face .. first_face + n_faces) of
-    // `face_list` (or of the range, when face_list is null) that it is strictly above.
+    // `face_list` (or of the range, when face_list is null) that it is above by more than thin.
+    // A point above none of them is dropped when it is exactly on or below all of them (it is in
+    // the hull: the cone argument of quickhull) or within thin of one of their triangles (the
+    // hull moves by at most thin). A point only thinly above some planes, but not near their
+    // triangles, is kept: near a flat apex such a point can lie far outside the hull.
     void distribute(const std::vector<uint32_t>& points, uint32_t first_face, uint32_t n_faces,
                     const std::vector<uint32_t>* face_list = nullptr) {
         for (uint32_t q : points) {
-            for (uint32_t k = 0; k < n_faces; ++k) {
+            bool assigned = false, near = false;
+            uint32_t thinly_above = kNone;
+            double thinly_value = 0;
+            for (uint32_t k = 0; k < n_faces && !assigned; ++k) {
                 const uint32_t fi = face_list ? (*face_list)[k] : first_face + k;
-                Face& f = faces_[fi];
+                const Face& f = faces_[fi];
                 const Orientation o = side(f, q);
-                // Exactly above, and by more than the thin tolerance (rounded; only which of the
-                // barely-outside points get dropped depends on that rounding, never the topology).
-                if (o.sign > 0 && o.value > thin_ * length(f.normal)) {
-                    next_[q] = f.outside;
-                    f.outside = q;
-                    // The determinant is the distance times a per-face constant.
-                    if (f.farthest == kNone || o.value > f.farthest_value) {
-                        f.farthest = q;
-                        f.farthest_value = o.value;
+                if (o.sign <= 0) continue;
+                if (o.value > thin_ * length(f.normal)) {
+                    assign(q, fi, o.value);
+                    assigned = true;
+                } else {
+                    if (thinly_above == kNone) {
+                        thinly_above = fi;
+                        thinly_value = o.value;
                     }
-                    break;
+                    near = near || point_triangle_distance(pts_[q], pts_[f.v[0]], pts_[f.v[1]], pts_[f.v[2]]) <= thin_;
                 }
             }
+            if (!assigned && thinly_above != kNone && !near) assign(q, thinly_above, thinly_value);
+        }
+    }
+
+    void assign(uint32_t q, uint32_t fi, double value) {
+        Face& f = faces_[fi];
+        next_[q] = f.outside;
+        f.outside = q;
+        // The determinant is the distance times a per-face constant.
+        if (f.farthest == kNone || value > f.farthest_value) {
+            f.farthest = q;
+            f.farthest_value = value;
         }
     }
 
@@ -426,6 +463,111 @@ uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32
     return best;
 }
 
+// ---- Which hull points are vertices --------------------------------------------------------------
+
+// Splits the points of the mesh `faces` into the vertices to keep and the rest (`all`: every
+// point of the mesh), and lists the mesh's edges. Exact part: a point whose incident facets lie
+// in fewer than three exact planes (fewer than three non-coplanar edges around it) is not a
+// vertex of the polytope: it goes. Thin part: a point that looks flat within `thin` (fewer than
+// three edges bent by more than thin, or the apex of a needle facet) goes if it lies within
+// thin of the hull of its neighbours: of their fan of triangles when it looks flat all around,
+// of the segment between the two bent edges' ends when it looks like it is inside an edge, of
+// the needle's long edge for a needle apex. Such a drop moves the hull by at most thin; to keep
+// the drops from compounding within a round, a point goes by the thin part only when no
+// neighbour goes in the same round.
+void select_vertices(const std::vector<Vec3>& p, const std::vector<Face>& faces, double thin, bool keep_all,
+                     std::vector<uint32_t>& kept, std::vector<uint32_t>& all, std::vector<std::pair<uint32_t, uint32_t>>& edges) {
+    const size_t n = p.size();
+    std::vector<uint32_t> exact_bends(n, 0), thin_bends(n, 0), any_face(n, kNone);
+    std::vector<std::array<uint32_t, 2>> needle(n, {kNone, kNone});
+    // Whether the edge a-b between faces f and g (f holds a -> b) bends: exactly, and by thin.
+    const auto bend = [&](const Face& f, const Face& g, uint32_t a, uint32_t b, bool& exact, bool& by_thin) {
+        uint32_t opposite = g.v[0];
+        for (uint32_t w : g.v)
+            if (w != a && w != b) opposite = w;
+        const Orientation o = orient(p[f.v[0]], p[f.v[1]], p[f.v[2]], p[opposite]);
+        exact = o.sign != 0;
+        by_thin = exact && std::fabs(o.value) > thin * length(f.normal);
+    };
+    edges.clear();
+    for (uint32_t fi = 0; fi < faces.size(); ++fi) {
+        const Face& f = faces[fi];
+        if (!f.alive) continue;
+        double longest = -1;
+        int apex = 0;
+        for (int e = 0; e < 3; ++e) {
+            const double l = length_sq(p[f.v[(e + 1) % 3]] - p[f.v[e]]);
+            if (l > longest) {
+                longest = l;
+                apex = (e + 2) % 3;
+            }
+        }
+        if (length(f.normal) <= thin * std::sqrt(longest) && needle[f.v[apex]][0] == kNone)
+            needle[f.v[apex]] = {f.v[(apex + 1) % 3], f.v[(apex + 2) % 3]};
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t a = f.v[e], b = f.v[(e + 1) % 3];
+            if (any_face[a] == kNone) any_face[a] = fi;
+            if (a > b) continue;  // each edge once, from the face where it runs upward
+            edges.emplace_back(a, b);
+            bool exact = false, by_thin = false;
+            bend(f, faces[f.adj[e]], a, b, exact, by_thin);
+            exact_bends[a] += exact;
+            exact_bends[b] += exact;
+            thin_bends[a] += by_thin;
+            thin_bends[b] += by_thin;
+        }
+    }
+    all.clear();
+    for (uint32_t i = 0; i < n; ++i)
+        if (any_face[i] != kNone) all.push_back(i);
+    std::vector<uint8_t> gone(n, 0);
+    if (!keep_all) {
+        for (uint32_t i : all) gone[i] = exact_bends[i] < 3;
+        std::vector<uint32_t> link;
+        std::vector<uint8_t> link_bent;
+        for (uint32_t i : all) {
+            if (gone[i] || (thin_bends[i] >= 3 && needle[i][0] == kNone)) continue;
+            // The neighbours in cyclic order around i; link_bent[k]: edge i-link[k] bends by thin.
+            link.clear();
+            link_bent.clear();
+            uint32_t fi = any_face[i];
+            do {
+                const Face& f = faces[fi];
+                int c = 0;
+                while (f.v[c] != i) ++c;
+                const uint32_t next = f.v[(c + 2) % 3];  // f holds next -> i; the face across follows
+                const Face& g = faces[f.adj[(c + 2) % 3]];
+                bool exact = false, by_thin = false;
+                bend(f, g, next, i, exact, by_thin);
+                link.push_back(next);
+                link_bent.push_back(by_thin);
+                fi = f.adj[(c + 2) % 3];
+            } while (fi != any_face[i] && link.size() <= faces.size());
+            bool neighbour_gone = false;
+            for (uint32_t u : link) neighbour_gone |= gone[u] != 0;
+            if (neighbour_gone) continue;
+            const Vec3 x = p[i];
+            double dist = std::numeric_limits<double>::infinity();
+            if (needle[i][0] != kNone) {
+                dist = point_segment_distance(x, p[needle[i][0]], p[needle[i][1]]);
+            } else if (thin_bends[i] == 0) {
+                for (size_t k = 1; k + 1 < link.size(); ++k)
+                    dist = std::min(dist, point_triangle_distance(x, p[link[0]], p[link[k]], p[link[k + 1]]));
+            } else if (thin_bends[i] == 2) {
+                uint32_t ends[2] = {kNone, kNone};
+                int found = 0;
+                for (size_t k = 0; k < link.size(); ++k)
+                    if (link_bent[k] && found < 2) ends[found++] = link[k];
+                if (found == 2) dist = point_segment_distance(x, p[ends[0]], p[ends[1]]);
+            }
+            if (dist <= thin) gone[i] = 1;
+        }
+    }
+    kept.clear();
+    for (uint32_t i : all)
+        if (!gone[i]) kept.push_back(i);
+}
+
 }  // namespace
 
 HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** out_shape) {
@@ -454,7 +596,11 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     const double extent = size[axis];
     if (!(extent > 0)) return HullStatus::Collinear;  // a single point repeated
     const double tolerance = kFlatTolerance * extent;
-    const double thin = kThinTolerance * extent;
+    // Plus the rounding a caller's transform leaves in coordinates of this magnitude (64 ulps of
+    // the largest): a small box far from the origin has faces only that flat.
+    double magnitude = 0;
+    for (const Vec3& x : p) magnitude = std::fmax(magnitude, max_abs(x));
+    const double thin = kThinTolerance * extent + 64 * std::numeric_limits<double>::epsilon() * magnitude;
 
     std::vector<uint32_t> ids(count);
     for (size_t i = 0; i < count; ++i) ids[i] = static_cast<uint32_t>(i);
@@ -489,38 +635,10 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     for (int attempt = 0;; ++attempt) {
         Quickhull qh(p, thin);
         qh.build(ids, tetra);
-        const auto& faces = qh.faces();
-        std::vector<uint32_t> bends(count, 0);
-        std::vector<uint8_t> on_hull(count, 0);
-        edges.clear();
-        for (const Face& f : faces) {
-            if (!f.alive) continue;
-            for (int e = 0; e < 3; ++e) {
-                const uint32_t a = f.v[e], b = f.v[(e + 1) % 3];
-                on_hull[a] = 1;
-                if (a > b) continue;  // each edge once, from the face where it runs upward
-                edges.emplace_back(a, b);
-                const Face& g = faces[f.adj[e]];
-                uint32_t opposite = g.v[0];
-                for (uint32_t w : g.v)
-                    if (w != a && w != b) opposite = w;
-                const Orientation o = orient(p[f.v[0]], p[f.v[1]], p[f.v[2]], p[opposite]);
-                const bool flat = o.sign == 0 || std::fabs(o.value) <= thin * length(f.normal);
-                if (!flat) {
-                    ++bends[a];
-                    ++bends[b];
-                }
-            }
-        }
         // Dropping a vertex can leave a neighbour on a flat spot, hence the rounds; exactly flat
         // spots all go in the first one. The cap is a guard: the last round keeps every vertex.
-        const bool last = attempt == 4;
         std::vector<uint32_t> kept, all;
-        for (uint32_t i = 0; i < count; ++i) {
-            if (!on_hull[i]) continue;
-            all.push_back(i);
-            if (bends[i] >= 3 || last) kept.push_back(i);
-        }
+        select_vertices(p, qh.faces(), thin, attempt == 6, kept, all, edges);
         if (kept.size() == all.size()) {
             hull_vertices = std::move(kept);
             break;

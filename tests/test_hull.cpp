@@ -292,6 +292,87 @@ TEST(HullClosedForm, RotatedCubeSurfaceKeepsOnlyCorners) {
     expect_supports_match(*hull.shape, pts, rng, 2000);
 }
 
+// Random sets built to be nasty: rotated and translated boxes with points on faces and edges,
+// near-duplicates a few ulps apart, prisms, thin slabs, and far outliers. Whatever was dropped,
+// the support stays within a few thin tolerances of the maximum over all
+// input points, and a box's face and edge points never survive its corners.
+// (thin = 1e-12 of the extent plus 64 ulps of the largest coordinate, as hull.cpp documents.)
+TEST(HullStress, RotatedTranslatedNearDegenerateSets) {
+    Rng rng(kSeed + 460);
+    std::normal_distribution<double> gauss;
+    for (int trial = 0; trial < 400; ++trial) {
+        SCOPED_TRACE("seed " + std::to_string(kSeed + 460) + ", trial " + std::to_string(trial));
+        const int kind = trial % 5;
+        const bool outliers = trial % 7 == 3;
+        const Mat3 rot = to_matrix(normalized(Quat{gauss(rng), gauss(rng), gauss(rng), gauss(rng)}));
+        const Vec3 offset = trial % 3 == 0 ? Vec3{} : Vec3{uniform(rng, -1e4, 1e4), uniform(rng, -1e4, 1e4), uniform(rng, -1e4, 1e4)};
+        std::vector<Vec3> local;
+        if (kind <= 1)
+            for (int c = 0; c < 8; ++c) local.push_back({c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+        const int n = static_cast<int>(uniform_int(rng, 10, 150));
+        for (int i = 0; i < n; ++i) {
+            Vec3 x{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
+            const int axis = static_cast<int>(uniform_int(rng, 0, 2));
+            switch (kind) {
+                case 0:  // box faces
+                    x[axis] = uniform_int(rng, 0, 1) ? 1.0 : -1.0;
+                    break;
+                case 1:  // box edges
+                    x[axis] = uniform_int(rng, 0, 1) ? 1.0 : -1.0;
+                    x[(axis + 1) % 3] = uniform_int(rng, 0, 1) ? 1.0 : -1.0;
+                    break;
+                case 2: {  // near-duplicates on a sphere
+                    x = random_unit(rng);
+                    if (!local.empty() && i % 2) {
+                        x = local[static_cast<size_t>(uniform_int(rng, 0, static_cast<int64_t>(local.size()) - 1))];
+                        x[axis] = std::nextafter(x[axis], uniform_int(rng, 0, 1) ? 2.0 : -2.0);
+                    }
+                    break;
+                }
+                case 3: {  // prism over a circle
+                    const double a = uniform(rng, -M_PI, M_PI);
+                    x = {std::cos(a), std::sin(a), double(uniform_int(rng, 0, 1))};
+                    break;
+                }
+                default:  // thin slab, well above the coplanar tolerance
+                    x.z *= 1e-7;
+                    break;
+            }
+            local.push_back(x);
+        }
+        if (outliers)
+            for (int i = 0; i < 10; ++i) local.push_back(Vec3{gauss(rng), gauss(rng), gauss(rng)} * 1e4);
+        std::vector<Vec3> pts;
+        for (const Vec3& x : local) pts.push_back(rot * x + offset);
+        HullHolder hull(pts);
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        Vec3 lo = pts[0], hi = pts[0];
+        for (const Vec3& x : pts) {
+            lo = cwise_min(lo, x);
+            hi = cwise_max(hi, x);
+        }
+        const double extent = max_abs(hi - lo);
+        double magnitude = 0;
+        for (const Vec3& x : pts) magnitude = std::max(magnitude, max_abs(x));
+        const double thin = 1e-12 * extent + 64 * kEps * magnitude;  // the documented tolerance
+        const std::vector<Vec3> sorted_inputs = sorted(pts);
+        for (const Vec3& v : hull.shape->vertices)
+            ASSERT_TRUE(std::binary_search(sorted_inputs.begin(), sorted_inputs.end(), v, vec_less));
+        for (int k = 0; k < 50; ++k) {
+            const Vec3 d = random_unit(rng);
+            // Relative to the offset, so that the comparison itself does not round at 1e4.
+            double best = -std::numeric_limits<double>::infinity();
+            for (const Vec3& x : pts) best = std::max(best, dot(d, x - offset));
+            ASSERT_NEAR(dot(d, support(*hull.shape, d) - offset), best, 4 * thin) << "direction #" << k;
+        }
+        if (kind <= 1 && !outliers) {
+            std::vector<Vec3> corners;
+            for (int c = 0; c < 8; ++c) corners.push_back(pts[static_cast<size_t>(c)]);
+            EXPECT_EQ(sorted(hull.shape->vertices), sorted(corners));
+        }
+    }
+}
+
 TEST(HullClosedForm, ThinToleranceIsRelativeToTheExtent) {
     // A bump on a cube's top face: 1e-14 of the extent above it is on the face (dropped), 1e-9
     // above it is a vertex; at any scale of the whole set.
