@@ -11,6 +11,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -243,20 +244,25 @@ constexpr uint32_t kRankEnd = 2;
 
 // ---- Space-time sweep and prune --------------------------------------------------------------
 
-class SpacetimeSap final : public BroadPhase {
+// Sorted endpoint arrays per axis, shared by both space-time sweeps: bulk insertion, removal,
+// teleports by local swaps, and the set of pairs overlapping now. Subclasses sweep the step.
+class EndpointSap : public BroadPhase {
 public:
-    SpacetimeSap() : BroadPhase(BroadPhaseKind::SpacetimeSap) {}
-
     std::string check_invariants() const override;
 
-private:
+protected:
+    explicit EndpointSap(BroadPhaseKind kind) : BroadPhase(kind) {}
+
     // One interval endpoint: its coordinate at the start and at the end of the step (equal between
     // steps) and tag = owner id << 2 | 2 if the owner is static | 1 for a max ("]"), 0 for a min
     // ("["), so that a swap reads nothing else to know what it changes.
+    // span: the owner's interval on the two other axes (axis + 1, axis + 2: lo, hi, lo, hi) over
+    // the step, rounded outward to float: a quick, conservative filter for a crossing's pair.
     struct Endpoint {
         double p0;
         double p1;
         uint32_t tag;
+        float span[4];
     };
     static uint32_t owner(const Endpoint& e) { return e.tag >> 2; }
     static bool is_max(const Endpoint& e) { return (e.tag & 1) != 0; }
@@ -278,7 +284,6 @@ private:
 
     void on_flush() override;
     void on_teleport(uint32_t id, const Aabb& old_box) override;
-    void on_step() override;
 
     uint32_t& ep(uint32_t id, int axis, bool max) { return ep_[id][static_cast<std::size_t>(2 * axis + (max ? 1 : 0))]; }
     uint32_t ep(uint32_t id, int axis, bool max) const { return ep_[id][static_cast<std::size_t>(2 * axis + (max ? 1 : 0))]; }
@@ -291,14 +296,18 @@ private:
     bool both_static(uint32_t a, uint32_t b) const { return records_[a].is_static && records_[b].is_static; }
 
     void swap_at(int axis, uint32_t i, double t, bool report);
-    void update_slot(int axis, uint32_t i, double t_now);
     void bubble(int axis, uint32_t idx);
-    void rebuild_indices(int axis, std::size_t from);
+    // Sets the spans of an object's six endpoints to the union of boxes a and b, and with
+    // set_end their end positions to b's (one pass over the six).
+    void set_spans(uint32_t id, const Aabb& a, const Aabb& b, bool set_end = false);
+    static bool spans_meet(const Endpoint& x, const Endpoint& y) {
+        return !(x.span[0] > y.span[1] || y.span[0] > x.span[1] || x.span[2] > y.span[3] || y.span[2] > x.span[3]);
+    }
+    void rebuild_indices(int axis, std::size_t from, std::size_t to);
 
     std::array<std::vector<Endpoint>, 3> axes_;
     std::vector<std::array<uint32_t, 6>> ep_;  // by id: index of [min, max] on x, y, z
     PairSet overlaps_;                         // pairs overlapping now, not both static
-    EventHeap heap_;
     // Scratch buffers kept between flushes.
     std::vector<SortItem> sort_items_;
     std::vector<Endpoint> merged_;
@@ -306,12 +315,60 @@ private:
     std::vector<uint32_t> active_all_, active_new_, active_pos_;
 };
 
-void SpacetimeSap::rebuild_indices(int axis, std::size_t from) {
-    auto& arr = axes_[static_cast<std::size_t>(axis)];
-    for (std::size_t i = from; i < arr.size(); ++i) ep(owner(arr[i]), axis, is_max(arr[i])) = static_cast<uint32_t>(i);
+// The talks' sweep: every adjacent swap is an event in an indexed heap, taken in time order, and
+// a pair is reported when a swap makes it overlap on all three axes.
+class QueuedSpacetimeSap final : public EndpointSap {
+public:
+    QueuedSpacetimeSap() : EndpointSap(BroadPhaseKind::SpacetimeSapQueued) {}
+    std::string check_invariants() const override;
+
+private:
+    void on_flush() override;
+    void on_step() override;
+    void update_slot(int axis, uint32_t i, double t_now);
+    EventHeap heap_;
+};
+
+// Float bounds of a double: the largest float <= x and the smallest float >= x (infinite beyond
+// the float range).
+float float_below(double x) {
+    if (!(x >= -3.4028234663852886e38)) return -std::numeric_limits<float>::infinity();
+    if (x > 3.4028234663852886e38) return std::numeric_limits<float>::max();
+    const float f = static_cast<float>(x);
+    if (!(static_cast<double>(f) > x)) return f;
+    // Rounded up: the next float down (f is finite here; its bits step toward -infinity).
+    if (f == 0) return -std::numeric_limits<float>::denorm_min();
+    const auto u = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? u - 1 : u + 1);
+}
+float float_above(double x) { return -float_below(-x); }
+
+void EndpointSap::set_spans(uint32_t id, const Aabb& a, const Aabb& b, bool set_end) {
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = float_below(std::min(a.min[k], b.min[k]));
+        hi[k] = float_above(std::max(a.max[k], b.max[k]));
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+        const int j1 = (axis + 1) % 3, j2 = (axis + 2) % 3;
+        auto& arr = axes_[static_cast<std::size_t>(axis)];
+        for (bool mx : {false, true}) {
+            Endpoint& e = arr[ep(id, axis, mx)];
+            if (set_end) e.p1 = mx ? b.max[axis] : b.min[axis];
+            e.span[0] = lo[j1];
+            e.span[1] = hi[j1];
+            e.span[2] = lo[j2];
+            e.span[3] = hi[j2];
+        }
+    }
 }
 
-void SpacetimeSap::on_flush() {
+void EndpointSap::rebuild_indices(int axis, std::size_t from, std::size_t to) {
+    auto& arr = axes_[static_cast<std::size_t>(axis)];
+    for (std::size_t i = from; i < to; ++i) ep(owner(arr[i]), axis, is_max(arr[i])) = static_cast<uint32_t>(i);
+}
+
+void EndpointSap::on_flush() {
     if (ep_.size() < records_.size()) ep_.resize(records_.size());
 
     if (!pending_removes_.empty()) {
@@ -353,14 +410,15 @@ void SpacetimeSap::on_flush() {
                 const bool mx = (s.flag_owner >> 31) != 0;
                 const Aabb& b = records_[id].box;
                 const double p = mx ? b.max[axis] : b.min[axis];
-                const Endpoint e{p, p, (id << 2) | (records_[id].is_static ? 2u : 0u) | (mx ? 1u : 0u)};
+                const Endpoint e{p, p, (id << 2) | (records_[id].is_static ? 2u : 0u) | (mx ? 1u : 0u), {}};
                 while (r < arr.size() && !before(e, arr[r])) merged_.push_back(arr[r++]);
                 merged_.push_back(e);
             }
             while (r < arr.size()) merged_.push_back(arr[r++]);
             arr.swap(merged_);
-            rebuild_indices(axis, 0);
+            rebuild_indices(axis, 0, arr.size());
         }
+        for (uint32_t id : pending_adds_) set_spans(id, records_[id].box, records_[id].box);
 
         // New overlaps: one sweep along x with the objects whose x interval is open; a pair is
         // tested only if one of the two is new, by index on y and z.
@@ -394,14 +452,17 @@ void SpacetimeSap::on_flush() {
             list.push_back(id);
         }
     }
+}
 
+void QueuedSpacetimeSap::on_flush() {
+    EndpointSap::on_flush();
     // Slot of the adjacent endpoints at i and i + 1 of an axis: 4 * i + axis.
     heap_.resize_slots(4 * axes_[0].size());
 }
 
 // Swaps the endpoints at i and i + 1 of an axis and keeps the overlap set: "][" -> "[]" starts an
 // overlap on this axis, "[]" -> "][" ends one; the pair changes only if the others overlap too.
-void SpacetimeSap::swap_at(int axis, uint32_t i, double t, bool report) {
+void EndpointSap::swap_at(int axis, uint32_t i, double t, bool report) {
     auto& arr = axes_[static_cast<std::size_t>(axis)];
     const Endpoint left = arr[i];
     const Endpoint right = arr[i + 1];
@@ -421,7 +482,7 @@ void SpacetimeSap::swap_at(int axis, uint32_t i, double t, bool report) {
 }
 
 // (Re)computes the event of the adjacent endpoints at i and i + 1 of an axis, at time t_now.
-void SpacetimeSap::update_slot(int axis, uint32_t i, double t_now) {
+void QueuedSpacetimeSap::update_slot(int axis, uint32_t i, double t_now) {
     const auto& arr = axes_[static_cast<std::size_t>(axis)];
     if (i + 1 >= arr.size()) return;
     const uint32_t slot = 4 * i + static_cast<uint32_t>(axis);
@@ -456,7 +517,7 @@ void SpacetimeSap::update_slot(int axis, uint32_t i, double t_now) {
     }
 }
 
-void SpacetimeSap::on_step() {
+void QueuedSpacetimeSap::on_step() {
     overlaps_.for_each([&](uint64_t k) {
         pairs_.push_back({static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(k), 0.0});
     });
@@ -514,11 +575,12 @@ void SpacetimeSap::on_step() {
                 e.p0 = e.p1;
             }
         }
+        set_spans(id, records_[id].box_end, records_[id].box_end);
     }
 }
 
 // Moves the endpoint at idx (already holding its new position) to its place by adjacent swaps.
-void SpacetimeSap::bubble(int axis, uint32_t idx) {
+void EndpointSap::bubble(int axis, uint32_t idx) {
     auto& arr = axes_[static_cast<std::size_t>(axis)];
     while (idx > 0 && before(arr[idx], arr[idx - 1])) {
         swap_at(axis, idx - 1, 0.0, false);
@@ -532,7 +594,7 @@ void SpacetimeSap::bubble(int axis, uint32_t idx) {
     }
 }
 
-void SpacetimeSap::on_teleport(uint32_t id, const Aabb& old_box) {
+void EndpointSap::on_teleport(uint32_t id, const Aabb& old_box) {
     const Aabb& b = records_[id].box;
     for (int axis = 0; axis < 3; ++axis) {
         auto& arr = axes_[static_cast<std::size_t>(axis)];
@@ -544,9 +606,10 @@ void SpacetimeSap::on_teleport(uint32_t id, const Aabb& old_box) {
             bubble(axis, ep(id, axis, mx));
         }
     }
+    set_spans(id, b, b);
 }
 
-std::string SpacetimeSap::check_invariants() const {
+std::string EndpointSap::check_invariants() const {
     std::string base = BroadPhase::check_invariants();
     if (!base.empty()) return base;
     std::ostringstream why;
@@ -575,13 +638,17 @@ std::string SpacetimeSap::check_invariants() const {
                 why << "axis " << axis << " index " << i << ": endpoint at " << e.p0 << "/" << e.p1 << ", box says " << want;
                 return why.str();
             }
+            const int j1 = (axis + 1) % 3, j2 = (axis + 2) % 3;
+            if (!(e.span[0] <= b.min[j1] && e.span[1] >= b.max[j1] && e.span[2] <= b.min[j2] && e.span[3] >= b.max[j2])) {
+                why << "axis " << axis << " index " << i << ": span of object " << id << " does not hold its box";
+                return why.str();
+            }
             if (i > 0 && before(e, arr[i - 1])) {
                 why << "axis " << axis << " not sorted at index " << i;
                 return why.str();
             }
         }
     }
-    if (!heap_.empty()) return "event heap not empty between steps";
     std::size_t expected = 0;
     for (std::size_t x = 0; x < present.size(); ++x) {
         for (std::size_t y = x + 1; y < present.size(); ++y) {
@@ -605,6 +672,178 @@ std::string SpacetimeSap::check_invariants() const {
         return why.str();
     }
     return {};
+}
+
+std::string QueuedSpacetimeSap::check_invariants() const {
+    if (!heap_.empty()) return "event heap not empty between steps";
+    return EndpointSap::check_invariants();
+}
+
+// ---- Space-time sweep in one batch per axis ---------------------------------------------------
+//
+// Over the step every endpoint moves linearly, so two endpoints cross at most once, and they cross
+// exactly when their order at the end differs from their order at the start. Bringing an axis
+// from the start order to the end order by adjacent swaps performs exactly those crossings, each
+// once: the same swaps as the queued sweep, done in array order instead of time order, with no
+// heap and with memory read in sequence. A pair can first overlap at t > 0 only right after a
+// crossing "]a [b" -> "[b ]a" on some axis (the one whose overlap starts last); each such
+// crossing's pair gets first_overlap_time, the exact 4D test brute force runs, so pairs and times
+// equal brute force exactly. Pairs overlapping at t = 0 are the overlap set kept between steps.
+class SpacetimeSap final : public EndpointSap {
+public:
+    SpacetimeSap() : EndpointSap(BroadPhaseKind::SpacetimeSap) {}
+
+private:
+    // The end order: by end position, then "[" before "]".
+    static bool end_before(const Endpoint& a, const Endpoint& b) {
+        return a.p1 < b.p1 || (a.p1 == b.p1 && (a.tag & 1) < (b.tag & 1));
+    }
+    void on_step() override;
+    void crossing(const Endpoint& max_a, const Endpoint& min_b);
+    void sort_axis(int axis);
+    void bubble_moving(int axis);
+
+    std::vector<uint64_t> entered_;  // pairs found by crossings that overlap at the end
+    std::vector<uint32_t> movers_;   // scratch: array indices of moving endpoints
+};
+
+// "]a" and "[b" swapped, and their spans meet: a and b may start to overlap on this axis during
+// the step. (The sweeps test the spans first, inline: most crossings end there.)
+void SpacetimeSap::crossing(const Endpoint& max_a, const Endpoint& min_b) {
+    uint32_t a = owner(max_a), b = owner(min_b);
+    if (a > b) std::swap(a, b);
+    ++counters_.crossing_tests;
+    const Record& ra = records_[a];
+    const Record& rb = records_[b];
+    double t = 0;
+    if (!first_overlap_time({ra.box, ra.box_end}, {rb.box, rb.box_end}, &t)) return;
+    pairs_.push_back({a, b, t});
+    if (boxes_overlap(ra.box_end, rb.box_end)) entered_.push_back(pair_key(a, b));
+}
+
+// Insertion sort of a whole axis by end position: each endpoint that ends before its left
+// neighbour moves left past every endpoint it crosses. O(n + swaps), sequential memory.
+void SpacetimeSap::sort_axis(int axis) {
+    auto& arr = axes_[static_cast<std::size_t>(axis)];
+    const std::size_t n = arr.size();
+    std::size_t lo = n, hi = 0;
+    uint64_t swaps = 0;
+    for (std::size_t i = 1; i < n; ++i) {
+        if (!end_before(arr[i], arr[i - 1])) continue;
+        const Endpoint e = arr[i];
+        const bool e_is_min = !is_max(e);
+        std::size_t j = i;
+        do {
+            const Endpoint& f = arr[j - 1];
+            if (e_is_min && is_max(f) && spans_meet(f, e)) crossing(f, e);
+            arr[j] = f;
+            --j;
+        } while (j > 0 && end_before(e, arr[j - 1]));
+        arr[j] = e;
+        swaps += i - j;
+        lo = std::min(lo, j);
+        hi = i + 1;
+    }
+    if (lo < hi) rebuild_indices(axis, lo, hi);
+    counters_.swaps += swaps;
+}
+
+// Only the moving endpoints, each bubbled to its place in turn, so statics cost nothing. First
+// those moving right, rightmost first; then those moving left, leftmost first. An endpoint then
+// only ever meets endpoints whose key is final (or, moving right, left movers still at their
+// start, which it truly crosses), so every swap is a true crossing and none is undone later: the
+// swaps are exactly those of the insertion sort. Each endpoint is compared by its current key:
+// max(p0, p1) in the first pass, p1 in the second.
+void SpacetimeSap::bubble_moving(int axis) {
+    auto& arr = axes_[static_cast<std::size_t>(axis)];
+    const auto n = static_cast<uint32_t>(arr.size());
+    uint64_t swaps = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        movers_.clear();
+        for (uint32_t id : moving_) {
+            for (bool mx : {false, true}) {
+                const uint32_t i = ep(id, axis, mx);
+                const Endpoint& e = arr[i];
+                if (pass == 0 ? e.p1 > e.p0 : e.p1 < e.p0) movers_.push_back(i);
+            }
+        }
+        if (pass == 0) {
+            std::sort(movers_.begin(), movers_.end(), std::greater<uint32_t>());
+            for (uint32_t i0 : movers_) {
+                const Endpoint e = arr[i0];
+                uint32_t i = i0;
+                while (i + 1 < n) {
+                    const Endpoint& f = arr[i + 1];
+                    const double fk = std::max(f.p0, f.p1);
+                    if (!(fk < e.p1 || (fk == e.p1 && (f.tag & 1) < (e.tag & 1)))) break;
+                    if (is_max(e) && !is_max(f) && spans_meet(e, f)) crossing(e, f);
+                    arr[i] = f;
+                    ep(owner(f), axis, is_max(f)) = i;
+                    ++i;
+                }
+                arr[i] = e;
+                ep(owner(e), axis, is_max(e)) = i;
+                swaps += i - i0;
+            }
+        } else {
+            std::sort(movers_.begin(), movers_.end());
+            for (uint32_t i0 : movers_) {
+                const Endpoint e = arr[i0];
+                uint32_t i = i0;
+                while (i > 0 && end_before(e, arr[i - 1])) {
+                    const Endpoint& f = arr[i - 1];
+                    if (is_max(f) && !is_max(e) && spans_meet(f, e)) crossing(f, e);
+                    arr[i] = f;
+                    ep(owner(f), axis, is_max(f)) = i;
+                    --i;
+                }
+                arr[i] = e;
+                ep(owner(e), axis, is_max(e)) = i;
+                swaps += i0 - i;
+            }
+        }
+    }
+    counters_.swaps += swaps;
+}
+
+void SpacetimeSap::on_step() {
+    // Pairs overlapping at the start; those apart at the end leave the set afterwards.
+    doomed_.clear();
+    entered_.clear();
+    overlaps_.for_each([&](uint64_t k) {
+        const auto a = static_cast<uint32_t>(k >> 32), b = static_cast<uint32_t>(k);
+        pairs_.push_back({a, b, 0.0});
+        if (!boxes_overlap(records_[a].box_end, records_[b].box_end)) doomed_.push_back(k);
+    });
+    if (moving_.empty()) return;
+
+    for (uint32_t id : moving_) set_spans(id, records_[id].box, records_[id].box_end, true);
+    // When many objects move, one insertion sort per axis reads memory in order (statics cost a
+    // comparison each); otherwise only the moving endpoints are touched.
+    const bool whole = 8 * moving_.size() >= axes_[0].size();
+    for (int axis = 0; axis < 3; ++axis) {
+        if (whole) {
+            sort_axis(axis);
+        } else {
+            bubble_moving(axis);
+        }
+    }
+    for (uint64_t k : doomed_) overlaps_.erase(k);
+    for (uint64_t k : entered_) overlaps_.insert(k);
+    // The end becomes the start. The spans stay: the step's union still holds the end box.
+    if (whole) {
+        for (auto& arr : axes_) {
+            for (Endpoint& e : arr) e.p0 = e.p1;
+        }
+    } else {
+        for (uint32_t id : moving_) {
+            for (int axis = 0; axis < 3; ++axis) {
+                auto& arr = axes_[static_cast<std::size_t>(axis)];
+                arr[ep(id, axis, false)].p0 = arr[ep(id, axis, false)].p1;
+                arr[ep(id, axis, true)].p0 = arr[ep(id, axis, true)].p1;
+            }
+        }
+    }
 }
 
 // ---- References ------------------------------------------------------------------------------
@@ -725,6 +964,7 @@ uint64_t ordered_key(double x) {
 const char* to_string(BroadPhaseKind kind) {
     switch (kind) {
         case BroadPhaseKind::SpacetimeSap: return "spacetime_sap";
+        case BroadPhaseKind::SpacetimeSapQueued: return "spacetime_sap_queued";
         case BroadPhaseKind::EncapsulatingSap: return "encapsulating_sap";
         case BroadPhaseKind::BruteForce: return "brute_force";
     }
@@ -734,6 +974,7 @@ const char* to_string(BroadPhaseKind kind) {
 std::unique_ptr<BroadPhase> BroadPhase::create(BroadPhaseKind kind) {
     switch (kind) {
         case BroadPhaseKind::SpacetimeSap: return std::make_unique<SpacetimeSap>();
+        case BroadPhaseKind::SpacetimeSapQueued: return std::make_unique<QueuedSpacetimeSap>();
         case BroadPhaseKind::EncapsulatingSap: return std::make_unique<EncapsulatingSap>();
         case BroadPhaseKind::BruteForce: return std::make_unique<BruteForceBroadPhase>();
     }

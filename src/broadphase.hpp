@@ -41,12 +41,14 @@ struct BroadPhasePair {
 };
 
 enum class BroadPhaseKind {
-    SpacetimeSap,      // sorted endpoints swept through time, swaps queued in an indexed heap
-    EncapsulatingSap,  // plain sweep and prune on the boxes swept over the whole step
-    BruteForce,        // exact 4D box overlap of every pair, O(n^2): the reference
+    SpacetimeSap,        // sorted endpoints brought to the end order in one batch per axis; every
+                         // crossing that may start an overlap is tested exactly in space-time
+    EncapsulatingSap,    // plain sweep and prune on the boxes swept over the whole step
+    BruteForce,          // exact 4D box overlap of every pair, O(n^2): the reference
+    SpacetimeSapQueued,  // the talks' sweep: swaps queued in an indexed heap, done in time order
 };
 
-// "spacetime_sap", "encapsulating_sap", "brute_force".
+// "spacetime_sap", "encapsulating_sap", "brute_force", "spacetime_sap_queued".
 const char* to_string(BroadPhaseKind kind);
 
 // Work done by one step (and, for teleport_swaps, by the teleports since the previous step).
@@ -60,6 +62,7 @@ struct BroadPhaseCounters {
     uint64_t heap_updates = 0;     // key changes of a queued event (decrease or increase)
     uint64_t heap_removes = 0;     // queued events cancelled before their time
     uint64_t moving_objects = 0;   // objects given an end box different from their start box
+    uint64_t crossing_tests = 0;   // space-time tests of pairs whose endpoints crossed (batch sweep)
 };
 
 // The first moment in [0, 1] at which two swept boxes overlap on all three axes; false if they

@@ -108,6 +108,7 @@ int compare_pairs(const std::vector<BroadPhasePair>& ref, const std::vector<Broa
 
 struct Totals {
     uint64_t steps = 0, object_steps = 0, pairs = 0, swaps = 0, moving = 0, false_positives = 0, heap_ops = 0;
+    uint64_t crossing_tests = 0;
 };
 
 // The three broad phases driven in lock step over one scene; every step is checked against
@@ -115,13 +116,15 @@ struct Totals {
 class Harness {
 public:
     explicit Harness(uint64_t seed) : seed_(seed) {
-        for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap, BroadPhaseKind::BruteForce}) {
+        for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap, BroadPhaseKind::BruteForce,
+                          BroadPhaseKind::SpacetimeSapQueued}) {
             phases_.push_back(BroadPhase::create(kind));
         }
     }
     BroadPhase& sap() { return *phases_[0]; }
     BroadPhase& enc() { return *phases_[1]; }
     BroadPhase& brute() { return *phases_[2]; }
+    BroadPhase& queued() { return *phases_[3]; }
     std::vector<Body>& bodies() { return bodies_; }
 
     uint32_t add(const Body& b, uint32_t id) {
@@ -141,9 +144,11 @@ public:
         for (auto& p : phases_) EXPECT_TRUE(p->teleport(id, box));
     }
     void check() {
-        sap().flush();
-        const std::string why = sap().check_invariants();
-        EXPECT_EQ(why, "") << "seed " << seed_ << " after step " << totals_.steps;
+        for (BroadPhase* p : {&sap(), &queued()}) {
+            p->flush();
+            const std::string why = p->check_invariants();
+            EXPECT_EQ(why, "") << to_string(p->kind()) << ", seed " << seed_ << " after step " << totals_.steps;
+        }
     }
 
     // One step; returns false after a mismatch.
@@ -156,10 +161,14 @@ public:
         const auto& brute_pairs = brute().step();
         const auto& sap_pairs = sap().step();
         const auto& enc_pairs = enc().step();
+        const auto& queued_pairs = queued().step();
         last_ = sap_pairs;
         SCOPED_TRACE("seed " + std::to_string(seed_) + ", step " + std::to_string(totals_.steps));
         const int faults = compare_pairs(brute_pairs, sap_pairs, false, "space-time SAP") +
-                           compare_pairs(brute_pairs, enc_pairs, true, "encapsulating SAP");
+                           compare_pairs(brute_pairs, enc_pairs, true, "encapsulating SAP") +
+                           compare_pairs(brute_pairs, queued_pairs, false, "queued space-time SAP");
+        // Both sweeps swap exactly the endpoint pairs whose order differs at the start and the end.
+        EXPECT_EQ(sap().counters().swaps, queued().counters().swaps);
         for (const auto& p : sap_pairs) EXPECT_TRUE(p.t_first >= 0 && p.t_first <= 1 && p.a < p.b) << describe(p);
         const BroadPhaseCounters& c = sap().counters();
         EXPECT_EQ(c.false_positives, 0u);
@@ -176,7 +185,9 @@ public:
         totals_.swaps += c.swaps;
         totals_.moving += c.moving_objects;
         totals_.false_positives += enc().counters().false_positives;
-        totals_.heap_ops += c.heap_pushes + c.heap_pops + c.heap_updates + c.heap_removes;
+        const BroadPhaseCounters& q = queued().counters();
+        totals_.heap_ops += q.heap_pushes + q.heap_pops + q.heap_updates + q.heap_removes;
+        totals_.crossing_tests += c.crossing_tests;
         check();
         return faults == 0;
     }
@@ -207,9 +218,10 @@ Body random_body(Rng& rng, double side, double size_lo, double size_hi, double s
 void report(const char* scene, const Harness& h) {
     const Totals& t = h.totals();
     std::printf("[ scene    ] %-14s steps %3llu  pairs/object/step %.3f  swaps/moving object/step %.2f  "
-                "encapsulating false positives %llu of %llu pairs\n",
+                "crossing tests %.2f  encapsulating false positives %llu of %llu pairs\n",
                 scene, static_cast<unsigned long long>(t.steps), h.pairs_per_object(),
                 static_cast<double>(t.swaps) / static_cast<double>(std::max<uint64_t>(t.moving, 1)),
+                static_cast<double>(t.crossing_tests) / static_cast<double>(std::max<uint64_t>(t.moving, 1)),
                 static_cast<unsigned long long>(t.false_positives),
                 static_cast<unsigned long long>(t.pairs + t.false_positives));
 }
@@ -247,7 +259,8 @@ TEST(BroadPhase, FirstOverlapTimeByHand) {
 }
 
 TEST(BroadPhase, RejectsMisuse) {
-    for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap, BroadPhaseKind::BruteForce}) {
+    for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap, BroadPhaseKind::BruteForce,
+                      BroadPhaseKind::SpacetimeSapQueued}) {
         auto bp = BroadPhase::create(kind);
         const Aabb ok{{0, 0, 0}, {1, 1, 1}};
         const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -398,9 +411,11 @@ TEST(BroadPhase, StaticObjectsCostNothing) {
         for (int s = 0; s < 5; ++s) {
             ASSERT_TRUE(h.step()) << "seed " << seed;
             // Work is bounded by the moving objects and their swaps: no term in the statics.
+            const BroadPhaseCounters& q = h.queued().counters();
+            EXPECT_LE(q.heap_pushes, 12 * q.moving_objects + 3 * q.swaps) << "seed " << seed;
+            EXPECT_EQ(q.heap_pops, q.swaps);
             const BroadPhaseCounters& c = h.sap().counters();
-            EXPECT_LE(c.heap_pushes, 12 * c.moving_objects + 3 * c.swaps) << "seed " << seed;
-            EXPECT_EQ(c.heap_pops, c.swaps);
+            EXPECT_LE(c.crossing_tests, c.swaps) << "seed " << seed;
         }
         report("static+moving", h);
         EXPECT_GT(h.pairs_per_object(), 0.05) << "seed " << seed;
@@ -550,7 +565,8 @@ TEST(BroadPhase, BitIdenticalTwice) {
             const auto& pairs = h.sap().step();
             out.insert(out.end(), pairs.begin(), pairs.end());
             const BroadPhaseCounters& c = h.sap().counters();
-            counts.insert(counts.end(), {c.pairs, c.swaps, c.heap_pushes, c.heap_pops, c.heap_updates, c.heap_removes});
+            counts.insert(counts.end(), {c.pairs, c.swaps, c.crossing_tests, c.heap_pushes, c.heap_pops, c.heap_updates,
+                                         c.heap_removes});
             for (Body& b : h.bodies()) b.box = end_box(b);
         }
     };
@@ -573,36 +589,46 @@ TEST(BroadPhase, BitIdenticalTwice) {
 // step at 1k, 45 at 10k). Printed for comparison; bounded loosely so the scene stays meaningful.
 TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
     for (int n : {1000, 10000}) {
-        Rng rng(91);
-        auto sap = BroadPhase::create(BroadPhaseKind::SpacetimeSap);
-        const double side = std::cbrt(n / 0.10);
-        std::vector<Body> bodies(static_cast<std::size_t>(n));
-        for (uint32_t id = 0; id < bodies.size(); ++id) {
-            Body& b = bodies[id];
-            b.box = box_at(rng.in_cube(side / 2), {0.5, 0.5, 0.5});
-            b.velocity = rng.on_sphere(0.05);
-            sap->add(id, b.box, false);
-        }
-        const int steps = n == 1000 ? 4 : 2;
-        uint64_t swaps = 0, pairs = 0, heap_ops = 0;
-        for (int s = 0; s < steps; ++s) {
-            for (uint32_t id = 0; id < bodies.size(); ++id) sap->move(id, end_box(bodies[id]));
-            sap->step();
-            for (Body& b : bodies) b.box = end_box(b);
-            const BroadPhaseCounters& c = sap->counters();
-            swaps += c.swaps;
-            pairs += c.pairs;
-            heap_ops += c.heap_pushes + c.heap_pops + c.heap_updates + c.heap_removes;
-        }
-        const double per_object = static_cast<double>(swaps) / (static_cast<double>(n) * steps);
-        std::printf("[ uniform  ] N = %5d  swaps per moving object per step %.2f  heap operations %.2f  "
-                    "pairs per step %.1f\n",
-                    n, per_object, static_cast<double>(heap_ops) / (static_cast<double>(n) * steps),
-                    static_cast<double>(pairs) / steps);
-        EXPECT_GT(per_object, n == 1000 ? 3.0 : 15.0);
-        EXPECT_LT(per_object, n == 1000 ? 30.0 : 150.0);
-        if (n == 1000) {
-            EXPECT_EQ(sap->check_invariants(), "");
+        uint64_t batch_swaps = 0;
+        for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::SpacetimeSapQueued}) {
+            Rng rng(91);
+            auto sap = BroadPhase::create(kind);
+            const double side = std::cbrt(n / 0.10);
+            std::vector<Body> bodies(static_cast<std::size_t>(n));
+            for (uint32_t id = 0; id < bodies.size(); ++id) {
+                Body& b = bodies[id];
+                b.box = box_at(rng.in_cube(side / 2), {0.5, 0.5, 0.5});
+                b.velocity = rng.on_sphere(0.05);
+                sap->add(id, b.box, false);
+            }
+            const int steps = n == 1000 ? 4 : 2;
+            uint64_t swaps = 0, pairs = 0, heap_ops = 0, tests = 0;
+            for (int s = 0; s < steps; ++s) {
+                for (uint32_t id = 0; id < bodies.size(); ++id) sap->move(id, end_box(bodies[id]));
+                sap->step();
+                for (Body& b : bodies) b.box = end_box(b);
+                const BroadPhaseCounters& c = sap->counters();
+                swaps += c.swaps;
+                pairs += c.pairs;
+                tests += c.crossing_tests;
+                heap_ops += c.heap_pushes + c.heap_pops + c.heap_updates + c.heap_removes;
+            }
+            const double scale = static_cast<double>(n) * steps;
+            const double per_object = static_cast<double>(swaps) / scale;
+            std::printf("[ uniform  ] %-20s N = %5d  swaps per moving object per step %.2f  crossing tests %.2f  "
+                        "heap operations %.2f  pairs per step %.1f\n",
+                        to_string(kind), n, per_object, static_cast<double>(tests) / scale,
+                        static_cast<double>(heap_ops) / scale, static_cast<double>(pairs) / steps);
+            EXPECT_GT(per_object, n == 1000 ? 3.0 : 15.0);
+            EXPECT_LT(per_object, n == 1000 ? 30.0 : 150.0);
+            if (kind == BroadPhaseKind::SpacetimeSap) {
+                batch_swaps = swaps;
+            } else {
+                EXPECT_EQ(swaps, batch_swaps) << "both sweeps swap exactly the crossing endpoints";
+            }
+            if (n == 1000) {
+                EXPECT_EQ(sap->check_invariants(), "");
+            }
         }
     }
 }
