@@ -84,6 +84,7 @@ struct LocalDistance {
 template <class Pair>
 LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, uint32_t max_iterations) {
     Simplex s;
+    s.want_lambda = false;  // coordinates once, at the end
     // First direction: B lies roughly along t from A, so the closest points are near A's support
     // toward t and B's support toward -t; v is a guess at a point of A - B (about -t).
     Vec3 v = -pair.t;
@@ -150,6 +151,7 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
     out.iterations = it;
     out.v = s.v;
     out.core_norm_sq = dot(s.v, s.v);
+    s.update_lambda();
     s.closest_points(out.point_a, out.point_b);
     switch (out.termination) {
         case Termination::FullSimplex:

@@ -111,7 +111,8 @@ struct Simplex {
     unsigned bits = 0;      // current simplex
     unsigned last_all = 0;  // the points of the last add (current simplex and the ones it dropped)
     Vec3 v;                 // closest point of the current simplex to the origin
-    bool want_lambda = true;  // false: triangles skip their barycentric coordinates (boolean test)
+    bool want_lambda = true;  // false: triangles skip their barycentric coordinates until
+                              // update_lambda() (the distance loop needs them only at the end)
 
     // True when w equals a point of the last simplex before reduction (rule 5). Any such point y
     // has v.y >= ||v||^2 in exact arithmetic, so rule 1 would have fired: w comes back by rounding
@@ -154,9 +155,9 @@ struct Simplex {
             const double ee = dot(e, e);
             if (ee > 0 && std::isfinite(ee)) {
                 const double t = -dot(y[i], e) / ee;
+                v = y[i] + t * e;
                 lambda[i] = 1 - t;
                 lambda[j] = t;
-                v = y[i] + t * e;
                 return;
             }
         } else if (count == 3) {
@@ -187,6 +188,16 @@ struct Simplex {
             p += lambda[i] * y[i];
         }
         v = p;
+    }
+
+    // Barycentric coordinates of v over the current simplex, after iterations with want_lambda off
+    // (recomputes v by the same arithmetic, so it is unchanged). A full simplex keeps its own.
+    void update_lambda() {
+        if (bits == 15u || bits == 0) return;
+        const bool keep = want_lambda;
+        want_lambda = true;
+        set_from_subset(bits);
+        want_lambda = keep;
     }
 
     // Closest points on A and B (A's frame) from the barycentric coordinates of v. Coordinates that
@@ -249,9 +260,9 @@ struct Simplex {
             constexpr int k = std::countr_zero(x);
             const double d = dot(u[x], y[k] - y[m]);
             det[S][m] = d;
-            us += d * y[m];
+            if constexpr (S != 15u) us += d * y[m];
         });
-        u[S] = us;
+        if constexpr (S != 15u) u[S] = us;  // no larger subset needs u of the full set
     }
 
     // Johnson's test for subset S of All; comparisons are written so that NaN fails them.
@@ -398,14 +409,16 @@ struct Simplex {
         const double v2 = -dot(e1, cross(y[0], e3));
         const double v3 = -dot(e1, cross(e2, y[0]));
         const double v0 = dot(y[1], cross(y[2], y[3]));
-        if (!(vol != 0)) return false;
-        const double l0 = v0 / vol, l1 = v1 / vol, l2 = v2 / vol, l3 = v3 / vol;
-        if (!(l0 >= 0 && l1 >= 0 && l2 >= 0 && l3 >= 0)) return false;
-        const double sum = l0 + l1 + l2 + l3;
-        lambda[0] = l0 / sum;
-        lambda[1] = l1 / sum;
-        lambda[2] = l2 / sum;
-        lambda[3] = l3 / sum;
+        // Signs first (no division on the common outside case); NaN fails the comparisons.
+        if (!(vol > 0 ? (v0 >= 0 && v1 >= 0 && v2 >= 0 && v3 >= 0) : vol < 0 && (v0 <= 0 && v1 <= 0 && v2 <= 0 && v3 <= 0)))
+            return false;
+        const double sum = v0 + v1 + v2 + v3;
+        const double inv = sum != 0 ? 1 / sum : 0;
+        lambda[0] = v0 * inv;
+        lambda[1] = v1 * inv;
+        lambda[2] = v2 * inv;
+        lambda[3] = v3 * inv;
+        if (inv == 0) lambda[0] = lambda[1] = lambda[2] = lambda[3] = 0.25;
         return true;
     }
 };
