@@ -231,6 +231,15 @@ void on_boundary_face(Simplex& sx) {
     sx.v = Vec3{};
 }
 
+// The barycentric coordinates of v over the kept points lie in [0, 1] up to rounding.
+bool coordinates_sane(const Simplex& sx) {
+    for (unsigned q = sx.bits; q; q &= q - 1) {
+        const double l = sx.lambda[std::countr_zero(q)];
+        if (!(l >= -1e-9 && l <= 1 + 1e-9)) return false;
+    }
+    return true;
+}
+
 // ---- The cast loop ------------------------------------------------------------------------------
 
 struct LocalCast {
@@ -293,14 +302,19 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
                 out.termination = Termination::Separated;
                 break;
             }
-            x = s + lambda * r;
-            w = x - p;
+            const Vec3 x_new = s + lambda * r;
             normal = v;
             clipped = true;
-            moved = true;
-            if (policy == ClipPolicy::Restart) {
-                sx.bits = 0;
-                sx.last_all = 0;
+            // A clip that leaves x where it was (the step is below rounding) is not a move: the
+            // iteration goes on about the same point, and its guards (rules 5 and 6) apply.
+            if (!(x_new == x)) {
+                x = x_new;
+                w = x - p;
+                moved = true;
+                if (policy == ClipPolicy::Restart) {
+                    sx.bits = 0;
+                    sx.last_all = 0;
+                }
             }
         }
 
@@ -327,10 +341,13 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
         } else if (!moved) {
             o = sx.add(w, a, b, vv);
         } else if (policy == ClipPolicy::Keep && sx.bits != 0) {
+            // A point equal to a kept one, or within rounding of it, adds nothing but degeneracy.
             bool known = false;
+            const double close_sq = 1e-24 * sx.max_norm_sq();
             for (unsigned q = sx.bits; q; q &= q - 1) {
                 const int i = std::countr_zero(q);
-                if (sx.pa[i] == a && sx.pb[i] == b) known = true;
+                const Vec3 d = (sx.pa[i] - sx.pb[i]) - p;
+                if ((sx.pa[i] == a && sx.pb[i] == b) || dot(d, d) <= close_sq) known = true;
             }
             o = rebuild(sx, x, !known, a, b);
         } else {
@@ -338,6 +355,10 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
             o = sx.add(w, a, b, INFINITY);
         }
         if (o == Simplex::Outcome::Full) o = check_full(sx);
+        // Near-duplicate support points (a rim point found again from a direction one ulp away)
+        // make the simplex degenerate: its barycentric coordinates blow up (+-1e14 seen) and v is
+        // then a point off the simplex, short enough to fake a hit. Treated as a Johnson failure.
+        if ((o == Simplex::Outcome::Reduced || o == Simplex::Outcome::Backup) && !coordinates_sane(sx)) o = Simplex::Outcome::Failed;
         if (o == Simplex::Outcome::Failed) {
             // No valid sub-simplex even after the backup pass: restart from the newest point.
             if (restarts_left == 0) {
