@@ -309,3 +309,22 @@ TEST(GjkPeers, LibccdIntersect) {
     EXPECT_GT(hits, int(pairs.size()) / 6);
     EXPECT_LT(hits, int(pairs.size()) * 2 / 3);
 }
+
+// A hull/hull pair found by the random cross-check (seed 5150, pair 475) where FCL GST_INDEP
+// reports 0.119 for a true distance of 0.0802: Kairos matches the long double oracle.
+TEST(GjkPeers, FclGstIndepWrongOnHullPair) {
+    const std::vector<Pair> pairs = random_pairs(5150, 476);
+    const Pair& p = pairs[475];
+    ASSERT_EQ(p.a.kind, Kind::Hull);
+    ASSERT_EQ(p.b.kind, Kind::Hull);
+    auto ka = peer::make_kairos(p.a), kb = peer::make_kairos(p.b);
+    const DistanceResult r = gjk_distance(*ka, p.a.pose, *kb, p.b.pose, kTol, 256);
+    const oracle::Result o = oracle::distance(gjk_test::world_polytope(p.a.verts, p.a.pose),
+                                              gjk_test::world_polytope(p.b.verts, p.b.pose));
+    EXPECT_FALSE(o.intersecting);
+    EXPECT_NEAR(r.distance, static_cast<double>(o.distance), 1e-12);
+    int crashes = 0;
+    const std::vector<PeerOut> f = run_forked(1, [&](size_t) { return fcl_distance(p.a, p.b, fcl::GST_INDEP); }, crashes);
+    std::printf("[hull pair 475] oracle %.15g kairos %.15g FCL GST_INDEP %s%.15g\n", static_cast<double>(o.distance),
+                r.distance, f[0].status == 1 ? "" : "(crashed) ", f[0].distance);
+}
