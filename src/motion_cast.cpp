@@ -1,0 +1,335 @@
+// Motion cast by disk bounds with bisection (see motion_cast.hpp and ALGORITHMS.md §4). No heap
+// allocation: the fattened shapes live on the stack for one window each.
+#include "motion_cast.hpp"
+
+#include <cmath>
+
+#include "gjk.hpp"
+#include "radius.hpp"
+
+namespace kairos {
+namespace motion_detail {
+
+// Tuning of the windows, measured on random rotating pairs of every kind (tests/test_motion_cast
+// prints casts and distances per query; bench_motion_cast times them):
+// - kWindow: a window starts no longer than the time in which the two disks could grow to
+//   kWindow times the current distance (rho |angle| per step bounds the growth rate). 2 doubled
+//   the casts (the fattened shapes touch at once and get halved); 0.5 and 1 were alike.
+// - kCastWorth (Hybrid): the fattened cast runs only when its window is this many times longer
+//   than the advancement step.
+// - kCastSlack: a fattened cast stops once its ray point is within this fraction of the distance
+//   (never looser than kMaxCastTolerance, relative): finer is wasted on a loose bound, coarser
+//   would read the fattened shapes as touching at the start.
+// - kLoopDistanceTolerance: relative error of the distance queries inside the loop; the final one
+//   runs at the caller's tolerance when that is finer.
+inline constexpr double kWindow = 1.0;
+inline constexpr double kCastWorth = 3.0;
+// A cast that has not settled by then is read as touching (halve the window): fattened shapes
+// that overlap make GJK crawl over the disk's flat, coplanar support points.
+inline constexpr uint32_t kMaxCastIterations = 64;
+// Windows are not halved below this length (2^-60 of the step).
+inline constexpr double kMinWindow = 0x1p-60;
+inline constexpr double kCastSlack = 0.25;
+inline constexpr double kMaxCastTolerance = 1e-2;
+inline constexpr double kLoopDistanceTolerance = 1e-4;
+inline constexpr double kMinTolerance = 1e-15;
+// Rounding allowance on separations computed from supports, relative to the size.
+inline constexpr double kRounding = 1e-14;
+// The final distance query (normal and point) runs no finer than this: below it GJK read a flat
+// simplex on a cylinder's rim as holding the origin (sphere/cylinder pairs 1e-3 apart, 0.1 % at
+// 1e-13), and the normal gains nothing from it.
+inline constexpr double kFinalDistanceFloor = 1e-10;
+
+}  // namespace motion_detail
+
+namespace {
+
+using namespace motion_detail;
+
+// An upper bound of the farthest point of s from its local origin: the corner of its local box.
+double bounding_radius(const Shape& s) {
+    Vec3 lo, hi;
+    bounds(s, Pose{}, lo, hi);
+    const Vec3 m{std::fmax(std::fabs(lo.x), std::fabs(hi.x)), std::fmax(std::fabs(lo.y), std::fabs(hi.y)),
+                 std::fmax(std::fabs(lo.z), std::fabs(hi.z))};
+    const double r = length(m);
+    return std::isfinite(r) ? r : 0;
+}
+
+// A motion turns unless its two orientations are equal (q and -q alike): Motion reads a tiny
+// angle from the rounding of q q^-1, and such a motion must take the exact shape cast.
+bool turns(const Motion& m) {
+    const Quat a = m.start().orientation, b = m.end().orientation;
+    const bool same = (a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) ||
+                      (a.x == -b.x && a.y == -b.y && a.z == -b.z && a.w == -b.w);
+    return m.rotates() && !same;
+}
+
+Pose pose_at(const Motion& m, double t) {
+    const BodyState b = m.at(t);
+    return make_pose(b.position, turns(m) ? b.orientation : m.start().orientation);
+}
+
+// One body over the step: its motion and what the disk bound needs.
+struct Body {
+    const Shape* shape;
+    const Motion* motion;
+    Vec3 local_axis;  // rotation axis in the body's local frame (constant over the motion)
+    double rho = 0;   // extreme radius about that axis through the local origin
+    bool rotates = false;
+
+    Body(const Shape& s, const Motion& m) : shape(&s), motion(&m) {
+        rotates = turns(m);
+        if (rotates) {
+            const Pose p0 = pose_at(m, 0);
+            local_axis = normalized_or(p0.to_local_direction(m.axis()), {0, 0, 1});
+            rho = extreme_radius(s, local_axis);
+            if (!(rho >= 0) || !std::isfinite(rho)) rho = 0;
+        }
+    }
+    // Upper bound of how fast the disk radius grows per unit of time (rho |angle|).
+    double rate() const { return rotates ? rho * motion->angle() : 0; }
+    // Radius of the disk swept over [t0, t1], with a hair of slack for rounding in the poses.
+    double disk(double t0, double t1) const {
+        if (!rotates || !(rho > 0)) return 0;
+        return motion->disk_radius(rho, t0, t1) * (1 + 1e-12);
+    }
+    // Velocity of the world point p carried by the body (per step), at any time: linear part plus
+    // angular velocity (axis * angle) cross the arm from the body's origin at time t.
+    Vec3 velocity(Vec3 p, double t) const {
+        const Vec3 origin = motion->start().position + t * motion->linear();
+        Vec3 v = motion->linear();
+        if (rotates) v += cross(motion->angle() * motion->axis(), p - origin);
+        return v;
+    }
+};
+
+// Casts body x (at pose px, fattened by a disk of radius rx) against body y likewise.
+CastResult fattened_cast(const Body& x, const Pose& px, double rx, Vec3 tx, const Body& y, const Pose& py, double ry,
+                         Vec3 ty, double tolerance, uint32_t max_iterations) {
+    // The disks and sums are stack objects: their reference counts go up and down but never
+    // reach zero, so nothing is deleted; the caller's shapes keep their own references.
+    const DiskShape disk_x(x.local_axis, rx), disk_y(y.local_axis, ry);
+    const MinkowskiSumShape fat_x(*x.shape, disk_x), fat_y(*y.shape, disk_y);
+    const Shape& sx = rx > 0 ? static_cast<const Shape&>(fat_x) : *x.shape;
+    const Shape& sy = ry > 0 ? static_cast<const Shape&>(fat_y) : *y.shape;
+    return shape_cast(sx, px, tx, sy, py, ty, tolerance, max_iterations);
+}
+
+}  // namespace
+
+namespace motion_detail {
+
+CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
+                            uint32_t max_iterations, Strategy strategy, MotionCastStats* out_stats) {
+    MotionCastStats stats;
+    if (max_iterations == 0) max_iterations = 1;
+    // Comparisons written so that NaN takes the minimum.
+    if (!(tolerance >= kMinTolerance)) tolerance = kMinTolerance;
+    if (tolerance > 0.5) tolerance = 0.5;
+
+    if (!turns(ma) && !turns(mb)) {
+        // Pure translations: the exact shape cast, nothing paid for rotation.
+        stats.casts = 1;
+        stats.steps = 1;
+        if (out_stats) *out_stats = stats;
+        return shape_cast(a, make_pose(ma.start().position, ma.start().orientation), ma.linear(), b,
+                          make_pose(mb.start().position, mb.start().orientation), mb.linear(), tolerance, max_iterations);
+    }
+
+    const Body body_a(a, ma), body_b(b, mb);
+    const double rate = body_a.rate() + body_b.rate();  // the disks grow at most this fast
+    // The contact distance scales with the smaller shape (a rod against a huge wall: the rod), or
+    // the other one when that is a point.
+    const double radius_a = bounding_radius(a), radius_b = bounding_radius(b);
+    const double size = radius_a > 0 && radius_b > 0 ? std::fmin(radius_a, radius_b) : std::fmax(radius_a, radius_b);
+    const double delta = tolerance * size;  // "within the tolerance of contact"
+    const double loop_tolerance = std::fmax(tolerance, kLoopDistanceTolerance);
+    const Vec3 linear_rel = mb.linear() - ma.linear();  // B's velocity relative to A's (per step)
+    const bool hybrid = strategy != Strategy::DiskBisection;
+    // Advancement: the fattened cast only where the advancement cannot move t0.
+    const double cast_worth = strategy == Strategy::Hybrid ? kCastWorth : INFINITY;
+    const double speed_bound = length(linear_rel) + rate;  // |d distance / dt| <= this (per step)
+
+    uint32_t iterations = 0;
+    double t0 = 0;
+    Pose pa = pose_at(ma, 0), pb = pose_at(mb, 0);
+    // Distance at the current poses. GJK's FullSimplex can come from a flat tetrahedron on a
+    // curved rim (capsule/cone 1e-6 apart at tolerance 1e-10 read as intersecting): such a claim
+    // is checked by a cast with no motion (which rejects flat tetrahedra) and, when that finds the
+    // shapes apart, measured again at a coarse tolerance.
+    auto distance_now = [&](double tol) {
+        DistanceResult d = gjk_distance(a, pa, b, pb, tol, max_iterations);
+        iterations += d.iterations;
+        ++stats.distances;
+        if (d.intersecting && d.termination == Termination::FullSimplex) {
+            const CastResult c = shape_cast(a, pa, Vec3{}, b, pb, Vec3{}, kMinTolerance, max_iterations);
+            iterations += c.iterations;
+            ++stats.casts;
+            if (!c.hit) {
+                const DistanceResult coarse = gjk_distance(a, pa, b, pb, kMaxCastTolerance, max_iterations);
+                iterations += coarse.iterations;
+                ++stats.distances;
+                if (!coarse.intersecting) d = coarse;
+            }
+        }
+        return d;
+    };
+    DistanceResult dist = distance_now(loop_tolerance);
+    Vec3 clip_normal{};  // world, from A toward B, of the latest clip of a fattened cast
+    bool clipped = false;
+
+    auto finish = [&](CastResult r) {
+        r.iterations = iterations;
+        if (out_stats) *out_stats = stats;
+        return r;
+    };
+    auto no_hit = [&] {
+        CastResult r;
+        r.hit = false;
+        r.toi = 1;
+        r.termination = Termination::Separated;
+        return finish(r);
+    };
+    // A hit at t0 from the distance query there.
+    auto report = [&](Termination termination) {
+        if (loop_tolerance > tolerance && !dist.intersecting) dist = distance_now(std::fmax(tolerance, kFinalDistanceFloor));
+        CastResult r;
+        r.hit = true;
+        r.toi = t0;
+        r.termination = termination;
+        r.point = 0.5 * (dist.point_a + dist.point_b);
+        if (!dist.intersecting && dist.distance > 0) {
+            r.normal = dist.axis;
+        } else if (t0 == 0) {
+            // Overlap at the start: oppose the relative velocity of the contact point (B's
+            // relative to A's), as shape_cast's -r; else from A's origin toward B's.
+            const Vec3 rel = body_b.velocity(r.point, 0) - body_a.velocity(r.point, 0);
+            r.normal = normalized_or(-rel, normalized_or(pb.translation - pa.translation, dist.axis));
+        } else {
+            r.normal = clipped ? clip_normal : dist.axis;
+        }
+        return finish(r);
+    };
+
+    // The current window is [t0, t1] with t1 = min(t_end, t0 + window_cap, the disk rule).
+    double t_end = 1;              // disk strategy: the end of the window being worked through
+    double window_cap = INFINITY;  // halved while the fattened shapes touch at t0; reset on progress
+    auto advance = [&](double t) {
+        t0 = t;
+        if (t0 >= t_end) t_end = 1;  // the window is done: the rest of the step is next
+        window_cap = INFINITY;
+        pa = pose_at(ma, t0);
+        pb = pose_at(mb, t0);
+        dist = distance_now(loop_tolerance);
+    };
+
+    for (;;) {
+        if (stats.steps >= kMaxMotionSteps) return report(Termination::MaxIterations);
+        ++stats.steps;
+        if (dist.intersecting || dist.distance <= delta) return report(Termination::Hit);
+        const double d = dist.distance;
+
+        // Hybrid: two proven lower bounds of the next contact from the distance query; the
+        // larger is taken.
+        // (1) The separation along the distance's axis n, from two supports (exact whatever GJK's
+        //     accuracy; differences taken before rotating, so far from the world origin it keeps
+        //     its digits), bounds the distance from below and shrinks no faster than the approach
+        //     along n plus, per body, angle * rho * |n x axis| (a point within rho of the axis
+        //     moves along n no faster).
+        // (2) The distance, when GJK certified it (rule 1: within loop_tolerance), shrinks no
+        //     faster than the relative speed plus rho * angle per body, in any direction.
+        double t_ca = t0;
+        if (hybrid) {
+            const Vec3 n = dist.axis;
+            const Vec3 sa = pa.rotation * support(a, pa.to_local_direction(n));
+            const Vec3 sb = pb.rotation * support(b, pb.to_local_direction(-n));
+            const double sep = dot(n, (pb.translation - pa.translation) + (sb - sa)) - kRounding * size;
+            const double rate_n = std::fmax(0.0, -dot(n, linear_rel)) + body_a.rate() * length(cross(n, ma.axis())) +
+                                  body_b.rate() * length(cross(n, mb.axis()));
+            double h = 0;
+            if (sep > 0) h = rate_n > 0 ? sep / rate_n : INFINITY;
+            if (dist.termination == Termination::RelativeError && speed_bound > 0) {
+                const double certified = d * (1 - loop_tolerance) - kRounding * size;
+                if (certified / speed_bound > h) h = certified / speed_bound;
+            }
+            if (h > 1 - t0) return no_hit();  // no contact before the step's end
+            if (h > 0) t_ca = t0 + h;
+        }
+
+        // The window: short enough that the disks stay within kWindow times the distance.
+        double t1 = t0 + std::fmin(rate > 0 ? kWindow * d / rate : 1.0, window_cap);
+        if (t1 > t_end) t1 = t_end;
+        // Hybrid: the fattened cast pays only when its window reaches well past the advancement.
+        if (t_ca > t0 && !(t1 - t0 > cast_worth * (t_ca - t0))) {
+            advance(t_ca);
+            continue;
+        }
+        if (!(t1 > t0) || window_cap < kMinWindow) {
+            if (t_ca > t0) {
+                advance(t_ca);
+                continue;
+            }
+            return report(Termination::NoProgress);  // below the time resolution
+        }
+
+        // The fattened shapes over [t0, t1]: each body at its orientation at the window's middle
+        // (every orientation of the window is within half the angle of it, so the disk is about
+        // half as wide as one about the start) and its position at t0, cast with its translation.
+        const double tm = 0.5 * (t0 + t1);
+        const double ra = body_a.disk(t0, tm), rb = body_b.disk(t0, tm);
+        Pose qa = pa, qb = pb;
+        if (body_a.rotates) qa.rotation = pose_at(ma, tm).rotation;
+        if (body_b.rotates) qb.rotation = pose_at(mb, tm).rotation;
+        const Vec3 ta = (t1 - t0) * ma.linear(), tb = (t1 - t0) * mb.linear();
+        // The cast's accuracy (absolute): no finer than needed to land within delta / 2 of the
+        // true contact when the disks are that thin, and coarse enough elsewhere; always well below
+        // the distance so that "touching at the start" means the disks, not the cast's slack.
+        const double span = length(pb.translation - pa.translation) + radius_a + radius_b + 2 * (ra + rb);
+        const double target = std::fmax(0.5 * delta, std::fmin(kCastSlack * d, ra + rb));
+        double cast_tolerance = span > 0 ? target / span : kMaxCastTolerance;
+        if (!(cast_tolerance <= kMaxCastTolerance)) cast_tolerance = kMaxCastTolerance;
+        if (!(cast_tolerance >= kMinTolerance)) cast_tolerance = kMinTolerance;
+
+        const CastResult c = fattened_cast(body_a, qa, ra, ta, body_b, qb, rb, tb, cast_tolerance,
+                                           std::min(max_iterations, kMaxCastIterations));
+        iterations += c.iterations;
+        ++stats.casts;
+
+        double t_next = t0;
+        if (!c.hit) {
+            // Proven free of contact over [t0, t1].
+            if (t1 >= 1) return no_hit();
+            t_next = t1;
+            t_end = 1;
+        } else {
+            const double t_clip = t0 + c.toi * (t1 - t0);
+            if (c.toi > 0 && t_clip > t0) {
+                // No contact before the fattened shapes meet.
+                t_next = t_clip < t1 ? t_clip : t1;
+                clip_normal = c.normal;
+                clipped = true;
+            } else {
+                ++stats.bisections;
+            }
+        }
+        if (t_ca > t_next) t_next = t_ca;
+        if (t_next > t0) {
+            advance(t_next);
+        } else {
+            // The fattened shapes touch at t0 while the true ones are apart, and nothing else
+            // moved t0: halve the window, first half first (the same t0 and distance).
+            window_cap = 0.5 * std::fmin(window_cap, t1 - t0);
+        }
+    }
+}
+
+}  // namespace motion_detail
+
+CastResult motion_cast(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
+                       uint32_t max_iterations, MotionCastStats* out_stats) {
+    return motion_detail::motion_cast_with(a, ma, b, mb, tolerance, max_iterations, motion_detail::kDefaultStrategy,
+                                           out_stats);
+}
+
+}  // namespace kairos
