@@ -2,6 +2,7 @@
 #include "boundary.hpp"
 #include "cast.hpp"
 #include "gjk.hpp"
+#include "motion_cast.hpp"
 
 using namespace kairos;
 using namespace kairos::capi;
@@ -127,15 +128,17 @@ KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion
     return guarded(fn, [&] {
         require_pointer(a, fn, "a");
         require_pointer(motion_a, fn, "motion_a");
-        read_pose(&motion_a->start, fn, "motion_a.start");
-        read_pose(&motion_a->end, fn, "motion_a.end");
+        const BodyPose a0 = read_pose(&motion_a->start, fn, "motion_a.start");
+        const BodyPose a1 = read_pose(&motion_a->end, fn, "motion_a.end");
         require_pointer(b, fn, "b");
         require_pointer(motion_b, fn, "motion_b");
-        read_pose(&motion_b->start, fn, "motion_b.start");
-        read_pose(&motion_b->end, fn, "motion_b.end");
-        read_query_settings(settings, fn, "settings");
+        const BodyPose b0 = read_pose(&motion_b->start, fn, "motion_b.start");
+        const BodyPose b1 = read_pose(&motion_b->end, fn, "motion_b.end");
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        fail(KAIROS_ERROR_NOT_IMPLEMENTED, fn, "not implemented in this version");
+        const Motion ma(BodyState{a0.position, a0.orientation}, BodyState{a1.position, a1.orientation});
+        const Motion mb(BodyState{b0.position, b0.orientation}, BodyState{b1.position, b1.orientation});
+        *out = to_c(kairos::motion_cast(shape_of(a), ma, shape_of(b), mb, qs.tolerance, qs.max_iterations));
     });
 }
 

@@ -43,7 +43,7 @@
  * Determinism. The same inputs on the same build give bit-identical results.
  *
  * Not yet built. The contract is fixed before the algorithms: in this version
- * kairos_distance, kairos_intersect and kairos_motion_cast
+ * kairos_distance and kairos_intersect
  * check every argument (bad input gets its own status) and then return
  * KAIROS_ERROR_NOT_IMPLEMENTED; later 0.x versions build them without changing the contract.
  */
@@ -271,8 +271,17 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
                                      const kairos_query_settings* settings, kairos_cast_result* out);
 /* a and b follow their motions (translation and rotation) over the step. Conservative: toi is
  * never later than the true first contact by more than tolerance (a fraction of the step), and
- * a contact is never missed. Motions with equal start and end orientations take the exact
- * shape cast. */
+ * a contact is never missed. A hit is reported at the first time found at which the shapes are
+ * within tolerance * min(rA, rB) of each other (rA, rB: each shape's bounding radius about its
+ * local origin; the other one when one shape is a point), so a near miss closer than that counts
+ * as a contact; normal (unit, A toward B) and point (world, midway between the closest points)
+ * come from the distance there. Shapes overlapping at the start: toi 0, normal opposing the
+ * relative velocity of the contact point. Motions whose start and end orientations are equal
+ * (q or -q) take the exact shape cast. iterations: GJK support evaluations of all the distance
+ * queries and casts used. termination: HIT, SEPARATED (no hit), or MAX_ITERATIONS / NO_PROGRESS
+ * when a guard stopped the search: still a hit at a time before which there is no contact, but
+ * the shapes may be apart there (a near miss grazed for thousands of steps, or curved surfaces
+ * closer than double precision resolves, about 1e-7 of their size). */
 KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion* motion_a,
                                       const kairos_shape* b, const kairos_motion* motion_b,
                                       const kairos_query_settings* settings, kairos_cast_result* out);
