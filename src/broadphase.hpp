@@ -41,14 +41,18 @@ struct BroadPhasePair {
 };
 
 enum class BroadPhaseKind {
-    SpacetimeSap,        // sorted endpoints brought to the end order in one batch per axis; every
-                         // crossing that may start an overlap is tested exactly in space-time
+    SpacetimeSap,        // regions: columns along x, a sweep along x on the swept intervals in each,
+                         // every candidate with a moving object tested exactly in space-time
     EncapsulatingSap,    // plain sweep and prune on the boxes swept over the whole step
     BruteForce,          // exact 4D box overlap of every pair, O(n^2): the reference
-    SpacetimeSapQueued,  // the talks' sweep: swaps queued in an indexed heap, done in time order
+    SpacetimeSapQueued,  // the talks' sweep: one sorted array per axis, swaps queued in an indexed
+                         // heap and done in time order
+    SpacetimeSapGlobal,  // one sorted array per axis brought to the end order in one batch; every
+                         // crossing that may start an overlap tested exactly in space-time
 };
 
-// "spacetime_sap", "encapsulating_sap", "brute_force", "spacetime_sap_queued".
+// "spacetime_sap", "encapsulating_sap", "brute_force", "spacetime_sap_queued",
+// "spacetime_sap_global".
 const char* to_string(BroadPhaseKind kind);
 
 // Work done by one step (and, for teleport_swaps, by the teleports since the previous step).
@@ -73,6 +77,9 @@ bool first_overlap_time(const SweptAabb& a, const SweptAabb& b, double* out_t);
 
 // True if two boxes overlap (closed) on all three axes.
 bool boxes_overlap(const Aabb& a, const Aabb& b);
+
+// Sorts pairs by (a, b), stable (equal pairs keep their order). Ids below 2^30.
+void sort_pairs(std::vector<BroadPhasePair>& pairs, std::vector<BroadPhasePair>& scratch);
 
 // Order-preserving map of a double onto an unsigned integer: x < y iff key(x) < key(y), and
 // -0.0 and +0.0 share one key. The sign is handled by flipping: negative values get all bits
@@ -153,6 +160,7 @@ protected:
     std::vector<uint32_t> pending_removes_;
     std::vector<uint32_t> moving_;
     std::vector<BroadPhasePair> pairs_;
+    std::vector<BroadPhasePair> sort_scratch_;
     BroadPhaseCounters counters_;
     uint64_t teleport_swaps_since_step_ = 0;
     std::size_t live_count_ = 0;

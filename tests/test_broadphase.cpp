@@ -108,7 +108,7 @@ int compare_pairs(const std::vector<BroadPhasePair>& ref, const std::vector<Broa
 
 struct Totals {
     uint64_t steps = 0, object_steps = 0, pairs = 0, swaps = 0, moving = 0, false_positives = 0, heap_ops = 0;
-    uint64_t crossing_tests = 0;
+    uint64_t crossing_tests = 0, region_swaps = 0, region_tests = 0;
 };
 
 // The three broad phases driven in lock step over one scene; every step is checked against
@@ -117,7 +117,7 @@ class Harness {
 public:
     explicit Harness(uint64_t seed) : seed_(seed) {
         for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap, BroadPhaseKind::BruteForce,
-                          BroadPhaseKind::SpacetimeSapQueued}) {
+                          BroadPhaseKind::SpacetimeSapQueued, BroadPhaseKind::SpacetimeSapGlobal}) {
             phases_.push_back(BroadPhase::create(kind));
         }
     }
@@ -125,6 +125,7 @@ public:
     BroadPhase& enc() { return *phases_[1]; }
     BroadPhase& brute() { return *phases_[2]; }
     BroadPhase& queued() { return *phases_[3]; }
+    BroadPhase& global() { return *phases_[4]; }
     std::vector<Body>& bodies() { return bodies_; }
 
     uint32_t add(const Body& b, uint32_t id) {
@@ -144,7 +145,7 @@ public:
         for (auto& p : phases_) EXPECT_TRUE(p->teleport(id, box));
     }
     void check() {
-        for (BroadPhase* p : {&sap(), &queued()}) {
+        for (BroadPhase* p : {&sap(), &queued(), &global()}) {
             p->flush();
             const std::string why = p->check_invariants();
             EXPECT_EQ(why, "") << to_string(p->kind()) << ", seed " << seed_ << " after step " << totals_.steps;
@@ -162,13 +163,18 @@ public:
         const auto& sap_pairs = sap().step();
         const auto& enc_pairs = enc().step();
         const auto& queued_pairs = queued().step();
+        const auto& global_pairs = global().step();
         last_ = sap_pairs;
         SCOPED_TRACE("seed " + std::to_string(seed_) + ", step " + std::to_string(totals_.steps));
-        const int faults = compare_pairs(brute_pairs, sap_pairs, false, "space-time SAP") +
+        const int faults = compare_pairs(brute_pairs, sap_pairs, false, "space-time SAP in regions") +
                            compare_pairs(brute_pairs, enc_pairs, true, "encapsulating SAP") +
-                           compare_pairs(brute_pairs, queued_pairs, false, "queued space-time SAP");
-        // Both sweeps swap exactly the endpoint pairs whose order differs at the start and the end.
-        EXPECT_EQ(sap().counters().swaps, queued().counters().swaps);
+                           compare_pairs(brute_pairs, queued_pairs, false, "queued space-time SAP") +
+                           compare_pairs(brute_pairs, global_pairs, false, "global batch space-time SAP");
+        // Both global sweeps swap exactly the endpoint pairs whose order differs at the start and
+        // the end.
+        EXPECT_EQ(global().counters().swaps, queued().counters().swaps);
+        EXPECT_EQ(global().counters().false_positives, 0u);
+        EXPECT_EQ(queued().counters().false_positives, 0u);
         for (const auto& p : sap_pairs) EXPECT_TRUE(p.t_first >= 0 && p.t_first <= 1 && p.a < p.b) << describe(p);
         const BroadPhaseCounters& c = sap().counters();
         EXPECT_EQ(c.false_positives, 0u);
@@ -182,12 +188,14 @@ public:
         ++totals_.steps;
         totals_.object_steps += alive;
         totals_.pairs += brute_pairs.size();
-        totals_.swaps += c.swaps;
+        totals_.swaps += global().counters().swaps;
+        totals_.region_swaps += c.swaps;
         totals_.moving += c.moving_objects;
         totals_.false_positives += enc().counters().false_positives;
         const BroadPhaseCounters& q = queued().counters();
         totals_.heap_ops += q.heap_pushes + q.heap_pops + q.heap_updates + q.heap_removes;
-        totals_.crossing_tests += c.crossing_tests;
+        totals_.crossing_tests += global().counters().crossing_tests;
+        totals_.region_tests += c.crossing_tests;
         check();
         return faults == 0;
     }
@@ -217,11 +225,13 @@ Body random_body(Rng& rng, double side, double size_lo, double size_hi, double s
 
 void report(const char* scene, const Harness& h) {
     const Totals& t = h.totals();
-    std::printf("[ scene    ] %-14s steps %3llu  pairs/object/step %.3f  swaps/moving object/step %.2f  "
-                "crossing tests %.2f  encapsulating false positives %llu of %llu pairs\n",
+    const double moving = static_cast<double>(std::max<uint64_t>(t.moving, 1));
+    std::printf("[ scene    ] %-14s steps %3llu  pairs/object/step %.3f  per moving object and step: global swaps "
+                "%.2f, crossing tests %.2f; regions: swaps %.2f, tests %.2f  encapsulating false positives %llu of "
+                "%llu pairs\n",
                 scene, static_cast<unsigned long long>(t.steps), h.pairs_per_object(),
-                static_cast<double>(t.swaps) / static_cast<double>(std::max<uint64_t>(t.moving, 1)),
-                static_cast<double>(t.crossing_tests) / static_cast<double>(std::max<uint64_t>(t.moving, 1)),
+                static_cast<double>(t.swaps) / moving, static_cast<double>(t.crossing_tests) / moving,
+                static_cast<double>(t.region_swaps) / moving, static_cast<double>(t.region_tests) / moving,
                 static_cast<unsigned long long>(t.false_positives),
                 static_cast<unsigned long long>(t.pairs + t.false_positives));
 }
@@ -260,7 +270,7 @@ TEST(BroadPhase, FirstOverlapTimeByHand) {
 
 TEST(BroadPhase, RejectsMisuse) {
     for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap, BroadPhaseKind::BruteForce,
-                      BroadPhaseKind::SpacetimeSapQueued}) {
+                      BroadPhaseKind::SpacetimeSapQueued, BroadPhaseKind::SpacetimeSapGlobal}) {
         auto bp = BroadPhase::create(kind);
         const Aabb ok{{0, 0, 0}, {1, 1, 1}};
         const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -310,7 +320,7 @@ TEST(BroadPhase, CrossingPathsAreAFalsePositiveOnlyForSweptBoxes) {
     ASSERT_TRUE(h.step());
     EXPECT_EQ(h.totals().pairs, 0u);
     EXPECT_EQ(h.totals().false_positives, 1u);
-    EXPECT_EQ(h.sap().counters().swaps, 8u);  // four on x, four on y
+    EXPECT_EQ(h.global().counters().swaps, 8u);  // four on x, four on y
 }
 
 TEST(BroadPhase, PassingThroughReportsTheFirstMoment) {
@@ -326,7 +336,7 @@ TEST(BroadPhase, PassingThroughReportsTheFirstMoment) {
     ASSERT_EQ(h.last_pairs().size(), 1u);
     // a's max reaches 4 at t = 3/8 and a's min leaves 5 at t = 5/8: four endpoint swaps in all.
     EXPECT_EQ(h.last_pairs()[0].t_first, 0.375);
-    EXPECT_EQ(h.sap().counters().swaps, 4u);
+    EXPECT_EQ(h.global().counters().swaps, 4u);
     EXPECT_EQ(h.totals().pairs, 1u);
     ASSERT_TRUE(h.step());  // now apart and moving apart
     EXPECT_EQ(h.totals().pairs, 1u);
@@ -377,6 +387,7 @@ TEST(BroadPhase, FlockCausesNoSwap) {
         for (int s = 0; s < 5; ++s) ASSERT_TRUE(h.step()) << "seed " << seed;
         report("flock", h);
         EXPECT_EQ(h.totals().swaps, 0u) << "seed " << seed;
+        EXPECT_EQ(h.totals().region_swaps, 0u) << "seed " << seed;
         EXPECT_GT(h.pairs_per_object(), 0.3) << "seed " << seed;
         EXPECT_LT(h.pairs_per_object(), 5.0) << "seed " << seed;
     }
@@ -414,8 +425,8 @@ TEST(BroadPhase, StaticObjectsCostNothing) {
             const BroadPhaseCounters& q = h.queued().counters();
             EXPECT_LE(q.heap_pushes, 12 * q.moving_objects + 3 * q.swaps) << "seed " << seed;
             EXPECT_EQ(q.heap_pops, q.swaps);
-            const BroadPhaseCounters& c = h.sap().counters();
-            EXPECT_LE(c.crossing_tests, c.swaps) << "seed " << seed;
+            const BroadPhaseCounters& g = h.global().counters();
+            EXPECT_LE(g.crossing_tests, g.swaps) << "seed " << seed;
         }
         report("static+moving", h);
         EXPECT_GT(h.pairs_per_object(), 0.05) << "seed " << seed;
@@ -432,6 +443,7 @@ TEST(BroadPhase, StaticObjectsCostNothing) {
     ASSERT_TRUE(h.step());
     EXPECT_EQ(h.totals().pairs, 0u);  // pairs of two statics are never reported
     EXPECT_EQ(h.totals().heap_ops, 0u);
+    EXPECT_EQ(h.totals().region_tests + h.totals().region_swaps + h.totals().crossing_tests, 0u);
 }
 
 // Coordinates on a grid of halves and velocities in quarters: many endpoints coincide, and many
@@ -590,7 +602,7 @@ TEST(BroadPhase, BitIdenticalTwice) {
 TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
     for (int n : {1000, 10000}) {
         uint64_t batch_swaps = 0;
-        for (auto kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::SpacetimeSapQueued}) {
+        for (auto kind : {BroadPhaseKind::SpacetimeSapGlobal, BroadPhaseKind::SpacetimeSapQueued, BroadPhaseKind::SpacetimeSap}) {
             Rng rng(91);
             auto sap = BroadPhase::create(kind);
             const double side = std::cbrt(n / 0.10);
@@ -619,12 +631,17 @@ TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
                         "heap operations %.2f  pairs per step %.1f\n",
                         to_string(kind), n, per_object, static_cast<double>(tests) / scale,
                         static_cast<double>(heap_ops) / scale, static_cast<double>(pairs) / steps);
+            if (kind == BroadPhaseKind::SpacetimeSap) {
+                // Regions: far fewer swaps (only neighbours within a column change order).
+                EXPECT_LT(per_object, 3.0);
+                continue;
+            }
             EXPECT_GT(per_object, n == 1000 ? 3.0 : 15.0);
             EXPECT_LT(per_object, n == 1000 ? 30.0 : 150.0);
-            if (kind == BroadPhaseKind::SpacetimeSap) {
+            if (kind == BroadPhaseKind::SpacetimeSapGlobal) {
                 batch_swaps = swaps;
             } else {
-                EXPECT_EQ(swaps, batch_swaps) << "both sweeps swap exactly the crossing endpoints";
+                EXPECT_EQ(swaps, batch_swaps) << "both global sweeps swap exactly the crossing endpoints";
             }
             if (n == 1000) {
                 EXPECT_EQ(sap->check_invariants(), "");
