@@ -77,9 +77,6 @@ TEST_F(WorldFixture, BulletThroughAWallInEveryBroadPhase) {
         EXPECT_GT(st.gjk_iterations, 0u);
         EXPECT_GE(st.broad_phase_seconds, 0.0);
         EXPECT_GE(st.narrow_phase_seconds, 0.0);
-        if (bp == KAIROS_BROAD_PHASE_SPACETIME_SAP) {
-            EXPECT_GT(st.swaps, 0u);  // the bullet's endpoints pass the wall's
-        }
 
         // A caller that knows only a prefix of the stats gets only that prefix written.
         unsigned char raw[sizeof(kairos_step_stats) + 8];
