@@ -236,11 +236,15 @@ struct Simplex {
     Outcome add(Vec3 w, Vec3 a, Vec3 b, double prev_norm_sq) {
         // One instantiation per current simplex (bits 0..14): every subset loop below is unrolled
         // at compile time.
-        using Fn = Outcome (Simplex::*)(Vec3, Vec3, Vec3, double);
+        const int last = std::countr_zero(~bits & 15u);
+        y[last] = w;
+        pa[last] = a;
+        pb[last] = b;
+        using Fn = Outcome (Simplex::*)(double);
         static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
             return std::array<Fn, 15>{&Simplex::add_from<M>...};
         }(std::make_integer_sequence<unsigned, 15>{});
-        return (this->*table[bits & 15u])(w, a, b, prev_norm_sq);
+        return (this->*table[bits & 15u])(prev_norm_sq);
     }
 
     // Calls f(std::integral_constant<int, i>) for each bit i set in the compile-time mask S.
@@ -277,15 +281,14 @@ struct Simplex {
         return ok;
     }
 
+    // add() with the new point already in slot `last`.
     template <unsigned Old>
-    Outcome add_from(Vec3 w, Vec3 a, Vec3 b, double prev_norm_sq) {
+    Outcome add_from(double prev_norm_sq) {
         constexpr int last = std::countr_zero(~Old & 15u);
         constexpr unsigned last_bit = 1u << last;
         constexpr unsigned all = Old | last_bit;
         constexpr unsigned n_sub = kSubsets.count[Old];
-        y[last] = w;
-        pa[last] = a;
-        pb[last] = b;
+        const Vec3 w = y[last];
         norm_sq[last] = dot(w, w);
         det[last_bit][last] = 1;
         u[last_bit] = w;
