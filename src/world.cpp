@@ -9,6 +9,7 @@
 #include "cast.hpp"
 #include "gjk.hpp"
 #include "motion.hpp"
+#include "motion_cast.hpp"
 #include "radius.hpp"
 
 namespace kairos {
@@ -328,8 +329,15 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
             const Vec3 v = axes_[cursor].axis;
             const SweptSupport a = swept_support(*oa.shape, sa.start, sa.translation, sa.rotates, sa.axis, sa.disk, v);
             const SweptSupport b = swept_support(*ob.shape, sb.start, sb.translation, sb.rotates, sb.axis, sb.disk, v);
+            // The casts call shapes touching within tolerance times their size (the motion cast:
+            // times the sum of their bounding radii, at most sqrt(3) times a box's reach from
+            // the origin), so only a wider gap rules a contact out.
+            auto reach = [](const Object& o, const Sweep& sw) {
+                return std::sqrt(3.0) * std::fmax(max_abs(o.box.min - sw.start.translation), max_abs(o.box.max - sw.start.translation));
+            };
             const double size = max_extent(oa.box) + max_extent(ob.box) + max_abs(sa.translation) +
-                                max_abs(sb.translation) + max_abs(sb.start.translation - sa.start.translation);
+                                max_abs(sb.translation) + max_abs(sb.start.translation - sa.start.translation) +
+                                (sa.rotates || sb.rotates ? reach(oa, sa) + reach(ob, sb) : 0.0);
             const double slack = 4 * tol * size + 16 * kEps * (std::fabs(a.hi0) + std::fabs(b.lo0) + size);
             // Comparisons written so that NaN never separates.
             if (a.hi0 + slack < b.lo0 && a.hi0 + a.shift + slack < b.lo0 + b.shift) {
@@ -344,17 +352,11 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
         if (!sa.rotates && !sb.rotates) {
             r = shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
         } else {
-            // TEMPORARY rotation path, until src/motion_cast.hpp is committed: one translational
-            // cast of the shapes grown by their whole-step disks (ALGORITHMS.md §4 without the
-            // bisection). A conservative lower bound of the time of impact; a miss proves no
-            // contact, but a hit may be early or even false.
-            const DiskShape disk_a(sa.start.to_local_direction(sa.axis), sa.disk);
-            const DiskShape disk_b(sb.start.to_local_direction(sb.axis), sb.disk);
-            const MinkowskiSumShape grown_a(*oa.shape, disk_a);
-            const MinkowskiSumShape grown_b(*ob.shape, disk_b);
-            const Shape& ca = sa.rotates ? static_cast<const Shape&>(grown_a) : *oa.shape;
-            const Shape& cb = sb.rotates ? static_cast<const Shape&>(grown_b) : *ob.shape;
-            r = shape_cast(ca, sa.start, sa.translation, cb, sb.start, sb.translation, tol, max_it);
+            // A turn: the motion cast (disk bounds with bisection, ALGORITHMS.md §4). It takes no
+            // cached axis, so the cached one serves only the separating-plane test above.
+            const Motion ma(oa.pose, swept_[ia] ? oa.end : oa.pose);
+            const Motion mb(ob.pose, swept_[ib] ? ob.end : ob.pose);
+            r = motion_cast(*oa.shape, ma, *ob.shape, mb, tol, max_it);
         }
         ++counters_.narrow_phase_queries;
         counters_.gjk_iterations += r.iterations;

@@ -16,6 +16,7 @@
 #include "cast.hpp"
 #include "gjk.hpp"
 #include "motion.hpp"
+#include "motion_cast.hpp"
 #include "shape.hpp"
 #include "world.hpp"
 
@@ -257,10 +258,10 @@ private:
         }
     }
 
-    // Contacts: for pairs of objects that only translate, exactly the pairs a shape cast of every
-    // pair hits, with the same results bit for bit (the world runs that cast, or proves a miss).
-    // Pairs with a turning object: every moment sampled at which the shapes intersect comes no
-    // earlier than the pair's reported contact.
+    // Contacts: exactly the pairs that a cast of every pair hits (a shape cast when both only
+    // translate, else a motion cast), with the same results bit for bit (the world runs that cast,
+    // or proves a miss). Pairs with a turning object also against sampled moments: every moment
+    // at which the shapes intersect comes no earlier than the pair's reported contact.
     template <class Fault>
     void check_contacts(Fault& fault) {
         const auto& contacts = sap().contacts();
@@ -313,10 +314,23 @@ private:
                     }
                     continue;
                 }
-                // A turning pair: sample the step; gjk_intersect decides each moment.
+                // A turning pair: the motion cast of the pair, bit for bit (a still body's motion
+                // is its pose to itself, as the world has it) ...
                 ++totals_.rotating_pairs_checked;
                 if (c != nullptr) ++totals_.rotating_contacts;
-                const Motion ma(a->pose, end_of(*a)), mb(b->pose, end_of(*b));
+                auto still = [](const Body& x) { return x.velocity == Vec3{} && x.spin == 0; };
+                const Motion ma(a->pose, still(*a) ? a->pose : end_of(*a));
+                const Motion mb(b->pose, still(*b) ? b->pose : end_of(*b));
+                const CastResult r = motion_cast(*a->shape, ma, *b->shape, mb, tol, sap().settings().max_iterations);
+                if (r.hit != (c != nullptr)) {
+                    fault("turning pair " + ids(a->id, b->id) + ": motion cast of the pair says hit " + std::to_string(r.hit) +
+                          " at " + std::to_string(r.toi) + ", the world " + (c ? "reports" : "does not report") + " it");
+                } else if (c != nullptr && (std::bit_cast<uint64_t>(c->toi) != std::bit_cast<uint64_t>(r.toi) ||
+                                            !(c->normal == r.normal) || !(c->point == r.point))) {
+                    fault("turning pair " + ids(a->id, b->id) + ": contact differs from the motion cast of the pair");
+                }
+                // ... and, independently, no moment sampled in the step at which the shapes
+                // intersect comes before the reported contact; gjk_intersect decides each moment.
                 constexpr int kSamples = 24;
                 for (int k = 0; k <= kSamples; ++k) {
                     const double t = static_cast<double>(k) / kSamples;
