@@ -1,5 +1,6 @@
 // Tests of the GJK ray cast and shape cast (src/cast.hpp) against the long double oracles of
 // tests/oracle/cast_oracle.hpp: random casts of every pair of shape kinds, closed forms, hard cases.
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -385,4 +386,60 @@ TEST(ShapeCast, TerminationRules) {
     EXPECT_EQ(r.iterations, 1u);
     const CastResult full = shape_cast(*cyl, at({}), {}, *cyl, at({5, 0.2, 0.1}, Quat{0.3, 0.1, 0.2, 0.927}), {-10, 0, 0}, kTol, kMaxIt);
     EXPECT_LE(r.toi, full.toi);
+}
+
+// ---- The long run (not in CI) --------------------------------------------------------------------
+
+// 10^6 random casts of every pair of kinds against the oracles (KAIROS_CAST_LONG_COUNT overrides
+// the count, KAIROS_CAST_LONG_SEED the first of the consecutive seeds of its batches of 500).
+// Run with --gtest_also_run_disabled_tests --gtest_filter=CastLong.*
+TEST(CastLong, DISABLED_MillionCastsAgainstOracle) {
+    long total = 1000000;
+    if (const char* e = std::getenv("KAIROS_CAST_LONG_COUNT")) total = std::atol(e);
+    std::vector<std::pair<Kind, Kind>> pairs;
+    for (Kind ka : kAllKinds)
+        for (Kind kb : kAllKinds)
+            if (solid_kind(ka) || solid_kind(kb)) pairs.push_back({ka, kb});
+    const long per_batch = 500;
+    long done = 0;
+    uint64_t seed = 1000000;  // KAIROS_CAST_LONG_SEED: another first seed, to split the run
+    if (const char* e = std::getenv("KAIROS_CAST_LONG_SEED")) seed = std::strtoull(e, nullptr, 10);
+    Stats all;
+    int failures = 0;
+    while (done < total) {
+        const auto [ka, kb] = pairs[static_cast<size_t>(seed % pairs.size())];
+        const int n = static_cast<int>(std::min(per_batch, total - done));
+        testing::TestPartResultArray sink;
+        Stats st;
+        {
+            // Failures are counted and the first few printed with their seeds, not all reported.
+            testing::ScopedFakeTestPartResultReporter quiet(testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &sink);
+            st = run_pair(seed, ka, kb, n, kTol);
+        }
+        for (int i = 0; i < sink.size(); ++i)
+            if (++failures <= 20) std::printf("%s\n", sink.GetTestPartResult(i).message());
+        all.casts += st.casts;
+        all.hits += st.hits;
+        all.truth_hits += st.truth_hits;
+        all.misses += st.misses;
+        all.false_hits += st.false_hits;
+        all.late += st.late;
+        all.grazing += st.grazing;
+        for (double e : st.toi_err) all.toi_err.push_back(e);
+        for (double e : st.normal_angle) all.normal_angle.push_back(e);
+        for (double e : st.point_err) all.point_err.push_back(e);
+        for (double e : st.iterations) all.iterations.push_back(e);
+        done += n;
+        ++seed;
+        if (done % 100000 == 0) {
+            std::printf("%ld casts: misses %d false hits %d late %d failures %d\n", done, all.misses, all.false_hits, all.late, failures);
+            std::fflush(stdout);
+        }
+    }
+    all.print("long run");
+    std::printf("casts %d, oracle hits %d, grazing %d, misses %d, false hits %d, late %d, other failures %d\n", all.casts,
+                all.truth_hits, all.grazing, all.misses, all.false_hits, all.late, failures);
+    EXPECT_EQ(all.misses, 0);
+    EXPECT_EQ(all.false_hits, 0);
+    EXPECT_EQ(all.late, 0);
 }
