@@ -463,8 +463,8 @@ CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 tran
         return out;
     }
     out.toi = l.lambda;
-    // Start inside: -r, or from the shape's origin toward the ray's start, or +z.
-    const Vec3 fallback = normalized_or(-r, normalized_or(s, {0, 0, 1}));
+    // Start inside: -r, or from the shape's origin toward the ray's start, or world +z.
+    const Vec3 fallback = normalized_or(-r, normalized_or(s, pose.to_local_direction({0, 0, 1})));
     const Vec3 n = contact_normal(l, c.radius, fallback);
     // Point on the surface: the core's closest point pushed out by the radius along v.
     Vec3 p = l.point_a;
@@ -501,8 +501,8 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
         return out;
     }
     out.toi = l.lambda;
-    // Overlap at the start: -r, or from A's origin toward B's, or +z.
-    const Vec3 fallback = normalized_or(-r, normalized_or(t, {0, 0, 1}));
+    // Overlap at the start: -r, or from A's origin toward B's, or world +z.
+    const Vec3 fallback = normalized_or(-r, normalized_or(t, pose_a.to_local_direction({0, 0, 1})));
     const Vec3 n = contact_normal(l, margin, fallback);
     // Contact point: the cores' barycentric points pushed out by their radii along v (from A toward
     // B), each moved to its place at toi; they agree within the tolerance, the midpoint is taken.

@@ -30,7 +30,7 @@ struct CastResult {
 // tolerance: the relative accuracy eps in (0, 1): the iteration stops when the ray point is within
 // eps times the size of the shape seen from the ray point. A ray that starts inside hits at 0 with
 // normal -translation (unit), or, for a zero translation, the direction from the shape's local
-// origin toward the ray origin, or +z.
+// origin toward the ray origin, or world +z.
 CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations);
 
@@ -41,7 +41,7 @@ CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translat
 // Shapes that overlap (or touch within the tolerance) at the start: hit, toi 0, and the normal is
 // -r (unit): the contact opposes the relative motion, as it does for every later hit (normal . r < 0),
 // so a solver that removes the approach velocity along the normal stops the motion into the overlap.
-// With r = 0 it is the direction from A's local origin toward B's, or +z when they coincide.
+// With r = 0 it is the direction from A's local origin toward B's, or world +z when they coincide.
 CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
                       Vec3 translation_b, double tolerance, uint32_t max_iterations);
 

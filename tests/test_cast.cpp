@@ -301,8 +301,10 @@ TEST(ShapeCast, OverlapAtStartAndZeroTranslation) {
     EXPECT_TRUE(r.hit);
     EXPECT_EQ(r.toi, 0);
     EXPECT_NEAR(r.normal.y, 1, 1e-15);
-    // Same origins: +z.
+    // Same origins: world +z (whatever A's orientation).
     r = shape_cast(*a, at({}), {}, *b, at({}), {}, kTol, kMaxIt);
+    EXPECT_NEAR(r.normal.z, 1, 1e-15);
+    r = shape_cast(*a, at({}, Quat{0.5, 0.5, 0.5, 0.5}), {}, *b, at({}), {}, kTol, kMaxIt);
     EXPECT_NEAR(r.normal.z, 1, 1e-15);
     // Separated, no relative motion: a miss.
     r = shape_cast(*a, at({}), {3, 3, 3}, *b, at({2, 0, 0}), {3, 3, 3}, kTol, kMaxIt);
