@@ -62,14 +62,56 @@ inline Body make_body(Kind k) {
     return b;
 }
 
+// The faces (triangulated), outward normals, offsets and edges of the convex hull of `pts`, by
+// brute force over every triple: a triple is a face when all points lie on one side of its
+// plane, and that side decides the orientation (no reference point needed: a reference taken
+// inside the bounding box can lie outside a thin hull and flip faces).
+inline oracle::Polytope hull_polytope(const std::vector<P3>& pts) {
+    oracle::Polytope p;
+    p.v = pts;
+    const size_t n = pts.size();
+    Real extent = 0;
+    for (const P3& a : pts)
+        for (const P3& b : pts) extent = std::max(extent, norm(a - b));
+    for (const P3& q : pts) p.scale = std::max({p.scale, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+    const Real tol = extent * Real(1e-12);
+    std::vector<std::array<int, 2>> edges;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            for (size_t k = j + 1; k < n; ++k) {
+                P3 nrm = cross(pts[j] - pts[i], pts[k] - pts[i]);
+                const Real len = norm(nrm);
+                if (!(len > extent * extent * Real(1e-14))) continue;  // collinear triple
+                nrm = (Real(1) / len) * nrm;
+                Real hi = -std::numeric_limits<Real>::infinity(), lo = std::numeric_limits<Real>::infinity();
+                for (const P3& q : pts) {
+                    const Real d = dot(nrm, q - pts[i]);
+                    hi = std::max(hi, d);
+                    lo = std::min(lo, d);
+                }
+                if (hi > tol && lo < -tol) continue;  // points on both sides: not a face
+                if (hi > tol) nrm = Real(-1) * nrm;   // all below -> outward is +nrm; else -nrm
+                p.faces.push_back({int(i), int(j), int(k)});
+                p.normals.push_back(nrm);
+                p.offsets.push_back(dot(nrm, pts[i]));
+                edges.push_back({int(i), int(j)});
+                edges.push_back({int(i), int(k)});
+                edges.push_back({int(j), int(k)});
+            }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    p.edges = std::move(edges);
+    return p;
+}
+
 inline void finish_body(Body& b) {
-    if (b.kind == Kind::Hull) b.local_poly = oracle::make_polytope(b.verts);
+    if (b.kind == Kind::Hull) b.local_poly = hull_polytope(b.verts);
     if (b.kind == Kind::Box) {
         std::vector<P3> v;
         for (int i = 0; i < 8; ++i)
             v.push_back({(i & 1 ? 1 : -1) * b.half_extents.x, (i & 2 ? 1 : -1) * b.half_extents.y,
                          (i & 4 ? 1 : -1) * b.half_extents.z});
-        b.local_poly = oracle::make_polytope(v);
+        b.local_poly = hull_polytope(v);
     }
 }
 
