@@ -2,6 +2,8 @@
 # the conservative-advancement reference, closed forms, hard cases. MotionCastLong.* is the long
 # run (10^5 casts), disabled unless asked for.
 kairos_gtest(test_motion_cast SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_motion_cast.cpp LIBS kairos_core)
+# The motion cast through the C boundary (shared library).
+kairos_gtest(test_capi_motion SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_motion.cpp LIBS kairos)
 # Peers, each in its own executable: FCL's conservative advancement with screw motion and zero
 # translation (every call in a forked child), and Bullet's btContinuousConvexCollision in its
 # double build (never linked with the float build).
