@@ -26,7 +26,7 @@ enum class Termination : int32_t {
     FullSimplex = 3,      // the simplex holds the origin (or, for rounded shapes, the cores are
                           // closer than the sum of the radii): the shapes intersect
     JohnsonFailed = 4,    // no valid sub-simplex, and the backup pass did not improve: last estimate
-    RepeatedSupport = 5,  // the support point was already a simplex vertex (or a discarded one)
+    RepeatedSupport = 5,  // the support point was already a vertex of the last step's simplex
     NoProgress = 6,       // ||v||^2 decreased by no more than machine epsilon (relative)
     MaxIterations = 7,    // the iteration guard
     Separated = 8,        // intersection test: a separating axis was found
@@ -45,14 +45,17 @@ struct DistanceResult {
 
 // Distance between a at pose_a and b at pose_b. tolerance: relative error of the distance, in
 // (0, 1). max_iterations >= 1 is a guard only. Any finite input terminates within max_iterations
-// support evaluations and gives finite outputs.
+// support evaluations and gives finite outputs. When a rounding-limit rule ends the run (Johnson
+// failed, no progress) the tolerance may not be met: on curved shapes the certified relative gap
+// stayed below 4e-9 in the peer tests, where 6 of 1800 random pairs ended on such a rule.
 DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
                             uint32_t max_iterations);
 
 // True when a at pose_a and b at pose_b overlap or touch (within rounding). io_axis (world frame,
 // from A toward B, any length) seeds the search; a zero or non-finite axis means a fresh start.
 // When a separating axis is found it is written to io_axis (unit length); otherwise io_axis is
-// left as it was. out_iterations (may be null) receives the number of support evaluations.
+// left as it was. out_iterations (may be null) receives the number of support evaluations
+// (guard: 256; a run that ends on a rounding-limit rule reports touching, i.e. true).
 bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Vec3& io_axis,
                    uint32_t* out_iterations);
 
