@@ -31,7 +31,15 @@ bool valid_box(const Aabb& b) {
 
 bool same_box(const Aabb& a, const Aabb& b) { return a.min == b.min && a.max == b.max; }
 
-Aabb union_box(const Aabb& a, const Aabb& b) { return {cwise_min(a.min, b.min), cwise_max(a.max, b.max)}; }
+// Boxes are finite (checked on entry), so plain comparisons serve (fmin/fmax are library calls).
+Aabb union_box(const Aabb& a, const Aabb& b) {
+    Aabb u;
+    for (int k = 0; k < 3; ++k) {
+        u.min[k] = std::min(a.min[k], b.min[k]);
+        u.max[k] = std::max(a.max[k], b.max[k]);
+    }
+    return u;
+}
 
 uint64_t pair_key(uint32_t a, uint32_t b) {
     if (a > b) std::swap(a, b);
@@ -885,6 +893,9 @@ private:
     struct Column {
         std::vector<Entry> entries;
         uint32_t visited = 0;  // the pass that last queued it for a sweep
+        double max_len = 0;    // at least the longest entry's hi - lo (local queries start there)
+        uint32_t movers = 0;       // this step: its moving entries, at column_movers_[first_mover...]
+        uint32_t first_mover = 0;
     };
     // Per object: the box its entries were made from (its box, or the box swept over the last
     // step) and the columns they are in.
@@ -916,6 +927,11 @@ private:
 
     int32_t cell(double v) const;
     static uint64_t column_key(int32_t cy, int32_t cz);
+    // Fibonacci hashing: the top bits of key * 2^64 / phi, as many as the table's size needs.
+    std::size_t column_home(uint64_t key) const {
+        const auto bits = static_cast<unsigned>(std::countr_zero(column_index_.size()));
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+    }
     uint32_t column_at(int32_t cy, int32_t cz);
     const Column* find_column(int32_t cy, int32_t cz) const;
     static Entry make_entry(uint32_t id, const Aabb& k);
@@ -940,9 +956,11 @@ private:
     template <class Wanted, class F>
     void sweep_column(const Column& c, Wanted&& wanted, F&& f);
     void test_moving_pair(uint32_t a, uint32_t b);
+    void query_column(const Column& c, uint32_t id);  // appends to candidates_
     bool both_static(uint32_t a, uint32_t b) const { return records_[a].is_static && records_[b].is_static; }
 
     double cell_size_ = 0;  // chosen at the first insertion
+    double inverse_cell_ = 1;
     std::vector<Member> members_;
     std::vector<Column> columns_;
     std::vector<std::pair<uint64_t, uint32_t>> column_index_;  // open addressing: key -> column
@@ -953,8 +971,15 @@ private:
     std::vector<uint32_t> stale_;  // objects keyed by their last swept box
     std::vector<uint32_t> queued_;  // columns to sort and sweep
     uint32_t pass_ = 0;
-    std::vector<uint32_t> active_;
+    struct Active {
+        double hi;
+        float span[4];
+        uint32_t id;
+    };
+    std::vector<Active> active_;
     std::vector<uint64_t> doomed_, entered_, kept_;
+    std::vector<uint32_t> column_movers_;  // moving ids grouped by column (see first_mover)
+    std::vector<std::pair<uint32_t, uint32_t>> candidates_;  // pairs for the exact test
     std::vector<double> extents_;
 };
 
@@ -966,7 +991,7 @@ uint64_t RegionSap::column_key(int32_t cy, int32_t cz) {
 
 int32_t RegionSap::cell(double v) const {
     // Monotone in v (so a point of a box lies in a cell of the box's range), clamped.
-    const double c = std::floor(v / cell_size_);
+    const double c = std::floor(v * inverse_cell_);  // a positive factor keeps the order
     if (!(c >= -1073741824.0)) return -1073741824;
     if (c > 1073741823.0) return 1073741823;
     return static_cast<int32_t>(c);
@@ -980,13 +1005,13 @@ uint32_t RegionSap::column_at(int32_t cy, int32_t cz) {
         column_index_.assign(old.empty() ? 64 : 2 * old.size(), {PairSet::kEmpty, 0});
         for (const auto& kv : old) {
             if (kv.first == PairSet::kEmpty) continue;
-            std::size_t i = static_cast<std::size_t>((kv.first * 0x9E3779B97F4A7C15ull) >> 20) & (column_index_.size() - 1);
+            std::size_t i = column_home(kv.first);
             while (column_index_[i].first != PairSet::kEmpty) i = (i + 1) & (column_index_.size() - 1);
             column_index_[i] = kv;
         }
     }
     const std::size_t mask = column_index_.size() - 1;
-    std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    std::size_t i = column_home(key);
     for (; column_index_[i].first != PairSet::kEmpty; i = (i + 1) & mask) {
         if (column_index_[i].first == key) return column_index_[i].second;
     }
@@ -1000,8 +1025,7 @@ const RegionSap::Column* RegionSap::find_column(int32_t cy, int32_t cz) const {
     if (column_index_.empty()) return nullptr;
     const uint64_t key = column_key(cy, cz);
     const std::size_t mask = column_index_.size() - 1;
-    for (std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
-         column_index_[i].first != PairSet::kEmpty; i = (i + 1) & mask) {
+    for (std::size_t i = column_home(key); column_index_[i].first != PairSet::kEmpty; i = (i + 1) & mask) {
         if (column_index_[i].first == key) return &columns_[column_index_[i].second];
     }
     return nullptr;
@@ -1067,6 +1091,7 @@ void RegionSap::list(uint32_t id, const Aabb& k) {
     const Entry e = entry_[id];
     for_columns(id, [&](uint32_t c) {
         auto& v = columns_[c].entries;
+        columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
         v.insert(std::lower_bound(v.begin(), v.end(), e, [](const Entry& x, const Entry& y) {
                      return x.lo < y.lo || (x.lo == y.lo && x.id < y.id);
                  }),
@@ -1136,9 +1161,13 @@ void RegionSap::rekey_all() {
     }
     // 3. Staying: rewrite and sort.
     for (uint32_t c : queued_) {
+        double longest = columns_[c].max_len;
         for (Entry& e : columns_[c].entries) {
-            if (pending_[e.id]) e = entry_[e.id];
+            if (!pending_[e.id]) continue;
+            e = entry_[e.id];
+            longest = std::max(longest, e.hi - e.lo);
         }
+        columns_[c].max_len = longest;
         sort_column(columns_[c]);
     }
     for (uint32_t id : rekeys_) pending_[id] = 0;
@@ -1162,6 +1191,7 @@ void RegionSap::rekey_all() {
         }
         merged_.insert(merged_.end(), v.begin() + static_cast<std::ptrdiff_t>(r), v.end());
         v.swap(merged_);
+        for (const Entry& e : v) columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
     }
     for (const auto& [id, k] : movers_between_) {
         list(id, k);
@@ -1191,22 +1221,41 @@ void RegionSap::sort_column(Column& c) {
 
 template <class Wanted, class F>
 void RegionSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
-    // The active list holds indices of the entries whose x interval is still open.
+    // The active list holds copies of the entries whose x interval is still open, compacted as
+    // it is read; the tests are written without branches but for the rare pair that meets.
     active_.clear();
-    const Entry* v = c.entries.data();
-    const auto n = static_cast<uint32_t>(c.entries.size());
-    for (uint32_t j = 0; j < n; ++j) {
-        const Entry& e = v[j];
+    for (const Entry& e : c.entries) {
         std::size_t w = 0;
-        for (std::size_t i = 0; i < active_.size(); ++i) {
-            const Entry& a = v[active_[i]];
-            if (a.hi < e.lo) continue;  // closed for good: the lows only grow
-            active_[w++] = active_[i];
-            if (a.span[0] > e.span[1] || e.span[0] > a.span[1] || a.span[2] > e.span[3] || e.span[2] > a.span[3]) continue;
-            if (wanted(a.id, e.id)) f(a.id, e.id);
+        const std::size_t n = active_.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const Active a = active_[i];
+            const bool open = !(a.hi < e.lo);  // once closed, closed for good: the lows only grow
+            active_[w] = a;
+            w += open ? 1 : 0;
+            const bool meet = open & !(a.span[0] > e.span[1]) & !(e.span[0] > a.span[1]) & !(a.span[2] > e.span[3]) &
+                              !(e.span[2] > a.span[3]);
+            if (meet && wanted(a.id, e.id)) f(a.id, e.id);
         }
         active_.resize(w);
-        active_.push_back(j);
+        active_.push_back({e.hi, {e.span[0], e.span[1], e.span[2], e.span[3]}, e.id});
+    }
+}
+
+// The candidates of one moving entry in a sorted column: entries whose lo lies in
+// [m.lo - max_len, m.hi] hold every entry whose x interval meets m's. A pair of two moving
+// entries is tested from the one with the smaller id.
+void RegionSap::query_column(const Column& c, uint32_t id) {
+    const Entry& m = entry_[id];
+    // A few ulps lower, for the rounding of hi - lo and of the subtraction.
+    double from = m.lo - c.max_len;
+    from -= (std::fabs(from) + c.max_len) * 0x1p-50;
+    auto it = std::lower_bound(c.entries.begin(), c.entries.end(), from, [](const Entry& e, double x) { return e.lo < x; });
+    for (; it != c.entries.end() && !(it->lo > m.hi); ++it) {
+        const Entry& e = *it;
+        if (e.id == id || e.hi < m.lo) continue;
+        if (e.span[0] > m.span[1] || m.span[0] > e.span[1] || e.span[2] > m.span[3] || m.span[2] > e.span[3]) continue;
+        if (moving_flag_[e.id] && e.id < id) continue;
+        candidates_.push_back({id, e.id});
     }
 }
 
@@ -1250,6 +1299,8 @@ void RegionSap::on_flush() {
         std::nth_element(extents_.begin(), extents_.begin() + static_cast<std::ptrdiff_t>(extents_.size() / 2), extents_.end());
         const double median = extents_[extents_.size() / 2];
         cell_size_ = std::isfinite(median) && median > 0 ? 4 * median : 1.0;
+        inverse_cell_ = 1 / cell_size_;
+        if (!(inverse_cell_ > 0 && std::isfinite(inverse_cell_))) cell_size_ = inverse_cell_ = 1.0;
     }
     // Enter the new objects (appended, then each touched column sorted once), then find their
     // overlaps by sweeping those columns.
@@ -1266,6 +1317,7 @@ void RegionSap::on_flush() {
         const Entry e = entry_[id];
         for_columns(id, [&](uint32_t c) {
             columns_[c].entries.push_back(e);
+            columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
             queue(c);
         });
     }
@@ -1357,10 +1409,50 @@ void RegionSap::on_step() {
     rekeys_.insert(rekeys_.end(), moving_.begin(), moving_.end());
     stale_.assign(moving_.begin(), moving_.end());
     rekey_all();
+    // Per column: a full sweep when many of its entries move; otherwise each moving entry looks
+    // up its neighbours along x (entries starting within the column's longest entry before it),
+    // so still entries cost nothing but a binary search.
+    // The moving entries of each column, grouped by a counting sort over the queued columns.
+    for (uint32_t c : queued_) columns_[c].movers = 0;
+    std::size_t memberships = 0;
+    for (uint32_t id : moving_) {
+        if (members_[id].large) continue;
+        for_columns(id, [&](uint32_t c) { ++columns_[c].movers; });
+    }
+    for (uint32_t c : queued_) {
+        columns_[c].first_mover = static_cast<uint32_t>(memberships);
+        memberships += columns_[c].movers;
+        columns_[c].movers = 0;
+    }
+    column_movers_.resize(memberships);
+    for (uint32_t id : moving_) {
+        if (members_[id].large) continue;
+        for_columns(id, [&](uint32_t c) { column_movers_[columns_[c].first_mover + columns_[c].movers++] = id; });
+    }
+    candidates_.clear();
     auto wanted = [&](uint32_t a, uint32_t b) { return moving_flag_[a] || moving_flag_[b]; };
-    auto test = [&](uint32_t a, uint32_t b) { test_moving_pair(a, b); };
-    for (uint32_t c : queued_) sweep_column(columns_[c], wanted, test);
+    auto collect = [&](uint32_t a, uint32_t b) { candidates_.push_back({a, b}); };
+    for (uint32_t c : queued_) {
+        Column& col = columns_[c];
+        if (col.movers == 0) continue;
+        if (8 * col.movers >= col.entries.size()) {
+            col.max_len = 0;
+            for (const Entry& e : col.entries) col.max_len = std::max(col.max_len, e.hi - e.lo);
+            sweep_column(col, wanted, collect);
+        } else {
+            for (uint32_t k = 0; k < col.movers; ++k) query_column(col, column_movers_[col.first_mover + k]);
+        }
+    }
     queued_.clear();
+    // The exact tests, with the records of a later candidate loaded ahead (they are scattered).
+    constexpr std::size_t kAhead = 8;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        if (i + kAhead < candidates_.size()) {
+            __builtin_prefetch(&records_[candidates_[i + kAhead].first]);
+            __builtin_prefetch(&records_[candidates_[i + kAhead].second]);
+        }
+        test_moving_pair(candidates_[i].first, candidates_[i].second);
+    }
     for (uint32_t l : large_) {
         for (uint32_t id = 0; id < members_.size(); ++id) {
             if (id == l || !members_[id].listed || !(moving_flag_[l] || moving_flag_[id])) continue;
