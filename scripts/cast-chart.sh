@@ -45,6 +45,7 @@ plot f using (sel(sc1,"kairos",3)):(sel(sc1,"kairos",4)) w lp lc rgb c1 pt 7 t "
      f using (sel(sc3,"kairos_restart",3)):(sel(sc3,"kairos_restart",4)) w l dt 2 lc rgb c3 notitle, \
      f using (sel(sc4,"kairos_restart",3)):(sel(sc4,"kairos_restart",4)) w l dt 2 lc rgb c4 notitle, \
      "-" w lp lc rgb "black" dt 3 pt 4 t "the talks (2006, 2.6 GHz): 0.62 µs at 1e-1, 3.65 µs at 1e-7"
+tolerance,ns
 0.1,620
 1e-7,3650
 e
@@ -53,7 +54,7 @@ set title "Time per cast against the largest time-of-impact error (peers as poin
 set xlabel "max |toi - exact toi| over the hits (fraction of the step)"
 set ylabel "ns per cast"
 set xrange [1e-17:1]
-set key bottom right font ",9"
+set key top left font ",9"
 plot f using (pos(sel(sc1,"kairos",7))):(sel(sc1,"kairos",4)) w lp lc rgb c1 pt 7 t "Kairos box/box (ε from 1e-1 to 1e-12)", \
      f using (pos(sel(sc2,"kairos",7))):(sel(sc2,"kairos",4)) w lp lc rgb c2 pt 7 t "Kairos hull32/hull32", \
      f using (pos(sel(sc3,"kairos",7))):(sel(sc3,"kairos",4)) w lp lc rgb c3 pt 7 t "Kairos cylinder/cone", \

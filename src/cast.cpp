@@ -1,5 +1,18 @@
 // GJK ray cast and shape cast loops, instantiated per pair of support kinds (no virtual call, no
 // allocation). Shape casts run in A's local frame; results go back to the world frame.
+//
+// The simplex after a clip (ALGORITHMS.md §3 allows both): kept and re-expressed about the new
+// ray point (ClipPolicy::Keep, the default) or restarted from the last support point (Restart).
+// Measured by bench/bench_cast on its fixed sets of 512 casts (bench/results/cast.csv, one run,
+// median ns per cast / mean iterations, Keep against Restart):
+//   tolerance        1e-4                      1e-7                      1e-10
+//   box/box          541 / 4.90  vs  880 / 10.4    536 / 4.92  vs  886 / 10.4    538 / 4.92  vs  885 / 10.4
+//   hull32/hull32    931 / 5.56  vs 1765 / 14.5    906 / 5.56  vs 1777 / 14.5    908 / 5.56  vs 1778 / 14.5
+//   cylinder/cone   1209 / 8.47  vs 2300 / 35.2   1694 / 12.9  vs 3498 / 76.5   1967 / 17.5  vs 4598 / 106
+//   capsule/hull32   361 / 3.87  vs  384 / 6.25    401 / 4.16  vs  411 / 6.93    436 / 4.31  vs  458 / 7.23
+// Keeping the simplex takes 1.5-6x fewer iterations and up to 2.3x less time, although each clip
+// recomputes every determinant of the kept points; both policies agree with the oracle (Restart
+// only to 1e-6 on curved shapes, where at 1e-10 it reached the iteration cap with poor simplices).
 #include "cast.hpp"
 
 #include <bit>
