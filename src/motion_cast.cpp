@@ -158,8 +158,10 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
     // curved rim (capsule/cone 1e-6 apart at tolerance 1e-10 read as intersecting): such a claim
     // is checked by a cast with no motion (which rejects flat tetrahedra) and, when that finds the
     // shapes apart, measured again at a coarse tolerance.
+    double dist_tolerance = loop_tolerance;  // the relative tolerance of the query behind `dist`
     auto distance_now = [&](double tol) {
         DistanceResult d = gjk_distance(a, pa, b, pb, tol, max_iterations);
+        dist_tolerance = tol;
         iterations += d.iterations;
         ++stats.distances;
         if (d.intersecting && d.termination == Termination::FullSimplex) {
@@ -170,7 +172,10 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
                 const DistanceResult coarse = gjk_distance(a, pa, b, pb, kMaxCastTolerance, max_iterations);
                 iterations += coarse.iterations;
                 ++stats.distances;
-                if (!coarse.intersecting) d = coarse;
+                if (!coarse.intersecting) {
+                    d = coarse;
+                    dist_tolerance = kMaxCastTolerance;
+                }
             }
         }
         return d;
@@ -237,7 +242,7 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
         //     its digits), bounds the distance from below and shrinks no faster than the approach
         //     along n plus, per body, angle * rho * |n x axis| (a point within rho of the axis
         //     moves along n no faster).
-        // (2) The distance, when GJK certified it (rule 1: within loop_tolerance), shrinks no
+        // (2) The distance, when GJK certified it (rule 1: within its query's tolerance), shrinks no
         //     faster than the relative speed plus rho * angle per body, in any direction.
         double t_ca = t0;
         if (hybrid) {
@@ -250,7 +255,7 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
             double h = 0;
             if (sep > 0) h = rate_n > 0 ? sep / rate_n : INFINITY;
             if (dist.termination == Termination::RelativeError && speed_bound > 0) {
-                const double certified = d * (1 - loop_tolerance) - kRounding * size;
+                const double certified = d * (1 - dist_tolerance) - kRounding * size;
                 if (certified / speed_bound > h) h = certified / speed_bound;
             }
             if (h > 1 - t0) return no_hit();  // no contact before the step's end
