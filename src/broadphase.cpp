@@ -349,17 +349,15 @@ private:
     EventHeap heap_;
 };
 
-// Float bounds of a double: the largest float <= x and the smallest float >= x (infinite beyond
-// the float range).
+// Float bounds of a double: a float <= x and a float >= x, within a few float ulps (infinite
+// beyond the float range). x is lowered by more than half a float ulp (relative 2^-22, plus 2^-140
+// for subnormals) and rounded to nearest, which can then not land above x. No branches: these run
+// four times per moving object and step, on rounding directions that are random.
 float float_below(double x) {
-    if (!(x >= -3.4028234663852886e38)) return -std::numeric_limits<float>::infinity();
-    if (x > 3.4028234663852886e38) return std::numeric_limits<float>::max();
-    const float f = static_cast<float>(x);
-    if (!(static_cast<double>(f) > x)) return f;
-    // Rounded up: the next float down (f is finite here; its bits step toward -infinity).
-    if (f == 0) return -std::numeric_limits<float>::denorm_min();
-    const auto u = std::bit_cast<uint32_t>(f);
-    return std::bit_cast<float>(f > 0 ? u - 1 : u + 1);
+    double y = x - (std::fabs(x) * 0x1p-22 + 0x1p-140);
+    y = y < -3.4028234663852886e38 ? -std::numeric_limits<double>::infinity() : y;
+    y = y > 3.4028234663852886e38 ? 3.4028234663852886e38 : y;
+    return static_cast<float>(y);
 }
 float float_above(double x) { return -float_below(-x); }
 
@@ -996,11 +994,14 @@ uint64_t RegionSap::column_key(int32_t cy, int32_t cz) {
 }
 
 int32_t RegionSap::cell(double v) const {
-    // Monotone in v (so a point of a box lies in a cell of the box's range), clamped.
-    const double c = std::floor(v * inverse_cell_);  // a positive factor keeps the order
-    if (!(c >= -1073741824.0)) return -1073741824;
-    if (c > 1073741823.0) return 1073741823;
-    return static_cast<int32_t>(c);
+    // floor(v / cell), monotone in v (so a point of a box lies in a cell of the box's range), and
+    // clamped. A positive factor keeps the order; floor by truncation (std::floor is a library
+    // call on baseline x86-64).
+    const double x = v * inverse_cell_;
+    if (!(x >= -1073741824.0)) return -1073741824;  // NaN cannot come: boxes are finite
+    if (x >= 1073741823.0) return 1073741823;
+    const auto i = static_cast<int32_t>(x);
+    return i - (static_cast<double>(i) > x ? 1 : 0);  // a selection: negative x is common
 }
 
 uint32_t RegionSap::column_at(int32_t cy, int32_t cz) {
@@ -1229,10 +1230,9 @@ template <class Wanted, class F>
 void RegionSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
     // The active list holds copies of the entries whose x interval is still open, compacted as
     // it is read; the tests are written without branches but for the rare pair that meets.
-    active_.clear();
+    std::size_t n = 0;  // active entries: active_[0, n); the vector only grows
     for (const Entry& e : c.entries) {
         std::size_t w = 0;
-        const std::size_t n = active_.size();
         for (std::size_t i = 0; i < n; ++i) {
             const Active a = active_[i];
             const bool open = !(a.hi < e.lo);  // once closed, closed for good: the lows only grow
@@ -1242,8 +1242,14 @@ void RegionSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
                               !(e.span[2] > a.span[3]);
             if (meet && wanted(a.id, e.id)) f(a.id, e.id);
         }
-        active_.resize(w);
-        active_.push_back({e.hi, {e.span[0], e.span[1], e.span[2], e.span[3]}, e.id});
+        n = w;
+        const Active next{e.hi, {e.span[0], e.span[1], e.span[2], e.span[3]}, e.id};
+        if (n == active_.size()) {
+            active_.push_back(next);
+        } else {
+            active_[n] = next;
+        }
+        ++n;
     }
 }
 
