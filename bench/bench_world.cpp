@@ -12,7 +12,9 @@
 // thread CPU and wall milliseconds per step, and per step the swaps, pairs and false positives
 // (pairs whose boxes never overlap at one moment; for the peers: their pairs minus the exact
 // pairs of the same scene, filled in when Kairos's space-time sweep ran the same scene).
-// scripts/world-chart.sh runs it and draws bench/results/world.png.
+// --interleaved=<file> instead steps all broad phases through one scene in lock step and writes
+// their CPU time per step with the ratio to Kairos's space-time sweep (robust on a busy machine).
+// scripts/world-chart.sh runs both and draws bench/results/world.png.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -408,6 +410,54 @@ void write_csv(const char* path) {
     std::fclose(f);
 }
 
+// Interleaved runs: every broad phase steps through the same scene in lock step, one after the
+// other within each step, so a shared, noisy machine slows them alike; the ratios to Kairos's
+// space-time sweep are the robust figures. Rows: scene, N, variant, CPU ms per step (mean over
+// the steps), ratio to kairos_spacetime_sap.
+void run_interleaved(const char* path) {
+    std::FILE* f = std::fopen(path, "w");
+    if (f == nullptr) {
+        std::fprintf(stderr, "cannot write %s\n", path);
+        return;
+    }
+    std::fprintf(f, "scene,n,variant,cpu_ms_per_step,ratio_to_kairos_spacetime_sap\n");
+    const SceneKind scenes[] = {SceneKind::Uniform5, SceneKind::Uniform50, SceneKind::Moving10, SceneKind::Flock};
+    const Variant variants[] = {Variant::Spacetime, Variant::Fcl, Variant::BulletSweep, Variant::BulletDbvt,
+                                Variant::Encapsulating, Variant::Global, Variant::Queued};
+    for (SceneKind kind : scenes) {
+        for (int n : {1000, 10000, 100000}) {
+            Scene scene(kind, n);
+            std::vector<Variant> used;
+            std::vector<std::unique_ptr<Contender>> cs;
+            for (Variant v : variants) {
+                if (n == 100000 && (v == Variant::BulletSweep || v == Variant::Encapsulating || v == Variant::Queued)) continue;
+                used.push_back(v);
+                cs.push_back(make(v));
+                cs.back()->build(scene);
+            }
+            std::vector<double> cpu(cs.size(), 0);
+            const int steps = steps_for(n) + 1;
+            for (int s = 0; s < steps; ++s) {
+                scene.advance();
+                for (std::size_t k = 0; k < cs.size(); ++k) {
+                    const double c0 = thread_cpu_seconds();
+                    cs[k]->step(scene);
+                    if (s > 0) cpu[k] += thread_cpu_seconds() - c0;  // the first step settles
+                }
+            }
+            for (std::size_t k = 0; k < cs.size(); ++k) {
+                const double ms = 1e3 * cpu[k] / (steps - 1);
+                const double ratio = cpu[k] / cpu[0];
+                std::fprintf(f, "%s,%d,%s,%.4f,%.2f\n", scene_name(kind), n, variant_name(used[k]), ms, ratio);
+                std::printf("%-10s %7d %-30s %10.3f ms/step  %6.2fx Kairos\n", scene_name(kind), n, variant_name(used[k]), ms,
+                            ratio);
+            }
+            std::fflush(stdout);
+        }
+    }
+    std::fclose(f);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -416,6 +466,9 @@ int main(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) {
         if (std::strncmp(argv[i], "--csv=", 6) == 0) {
             csv = argv[i] + 6;
+        } else if (std::strncmp(argv[i], "--interleaved=", 14) == 0) {
+            run_interleaved(argv[i] + 14);
+            return 0;
         } else {
             args.push_back(argv[i]);
         }
