@@ -14,12 +14,14 @@
 // recomputes every determinant of the kept points; both policies agree with the oracle (Restart
 // only to 1e-6 on curved shapes, where at 1e-10 it reached the iteration cap with poor simplices).
 #include "cast.hpp"
+#include "support_kernels.hpp"
 
 #include <bit>
 #include <cmath>
 
 namespace kairos {
 namespace cast_detail {
+using namespace kernels;
 
 using gjk_detail::Simplex;
 
@@ -107,43 +109,6 @@ Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
 
 namespace {
 
-// ---- Support mappings of the cores, in their local frame -----------------------------------------
-// Spheres and capsules are a point or a segment plus a radius: the loop runs on the core and folds
-// the radius into the clip and termination tests (fewer iterations on round shapes).
-
-struct PointSupport {
-    Vec3 operator()(Vec3) const { return {}; }
-};
-struct SegmentSupport {
-    double h;
-    Vec3 operator()(Vec3 d) const { return {0, 0, support_sign(d.z) * h}; }
-};
-struct BoxSupport {
-    Vec3 h;
-    Vec3 operator()(Vec3 d) const { return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z}; }
-};
-// Brute force over a small hull's vertices, first maximum wins (as ConvexHullShape::support).
-struct SmallHullSupport {
-    const Vec3* v;
-    size_t n;
-    Vec3 operator()(Vec3 d) const {
-        size_t best = 0;
-        double best_dot = dot(d, v[0]);
-        for (size_t i = 1; i < n; ++i) {
-            const double s = dot(d, v[i]);
-            if (s > best_dot) {
-                best_dot = s;
-                best = i;
-            }
-        }
-        return v[best];
-    }
-};
-struct GenericSupport {
-    const Shape* s;
-    Vec3 operator()(Vec3 d) const { return support(*s, d); }
-};
-
 // C = one shape (ray cast): p = s(d); b is zero.
 template <class S>
 struct SingleSupport {
@@ -154,68 +119,6 @@ struct SingleSupport {
         return out_a;
     }
 };
-
-// C = A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
-template <class SA, class SB>
-struct PairSupport {
-    SA sa;
-    SB sb;
-    Mat3 r;
-    Vec3 t;
-    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
-        out_a = sa(d);
-        out_b = r * sb(mul_transpose(r, -d)) + t;
-        return out_a - out_b;
-    }
-};
-
-enum class Core { Point, Segment, Box, SmallHull, Generic };
-struct CoreOf {
-    Core core;
-    double radius;
-};
-
-CoreOf classify(const Shape& s) {
-    switch (s.kind()) {
-        case ShapeKind::Point:
-            return {Core::Point, 0};
-        case ShapeKind::Sphere:
-            return {Core::Point, static_cast<const SphereShape&>(s).radius};
-        case ShapeKind::Segment:
-            return {Core::Segment, 0};
-        case ShapeKind::Capsule:
-            return {Core::Segment, static_cast<const CapsuleShape&>(s).radius};
-        case ShapeKind::Box:
-            return {Core::Box, 0};
-        case ShapeKind::ConvexHull: {
-            const auto& h = static_cast<const ConvexHullShape&>(s);
-            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0};
-            return {Core::Generic, 0};
-        }
-        default:
-            return {Core::Generic, 0};
-    }
-}
-
-template <class Fn>
-auto with_support(const Shape& s, Core c, Fn&& fn) {
-    switch (c) {
-        case Core::Point:
-            return fn(PointSupport{});
-        case Core::Segment:
-            return fn(SegmentSupport{s.kind() == ShapeKind::Capsule ? static_cast<const CapsuleShape&>(s).half_height
-                                                                    : static_cast<const SegmentShape&>(s).half_length});
-        case Core::Box:
-            return fn(BoxSupport{static_cast<const BoxShape&>(s).half_extents});
-        case Core::SmallHull: {
-            const auto& h = static_cast<const ConvexHullShape&>(s);
-            return fn(SmallHullSupport{h.vertices.data(), h.vertices.size()});
-        }
-        case Core::Generic:
-            break;
-    }
-    return fn(GenericSupport{&s});
-}
 
 // x reached the boundary of C (a clip happened, so x is on or outside C) and the tetrahedron of
 // the simplex holds it: x lies on one of its faces. The coordinates from signed volumes lose their

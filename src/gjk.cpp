@@ -1,6 +1,7 @@
 // GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk.hpp"
+#include "support_kernels.hpp"
 
 #include <cmath>
 
@@ -8,66 +9,7 @@ namespace kairos {
 namespace {
 
 using gjk_detail::Simplex;
-
-// ---- Support mappings of the core shapes, in their local frame ---------------------------------
-// Spheres and capsules are handled as a point or a segment plus a radius: GJK runs on the core and
-// the radius is folded into the termination tests (fewer iterations on round shapes).
-
-struct PointSupport {
-    Vec3 operator()(Vec3) const { return {}; }
-};
-struct SegmentSupport {
-    double h;
-    Vec3 operator()(Vec3 d) const { return {0, 0, support_sign(d.z) * h}; }
-};
-struct BoxSupport {
-    Vec3 h;
-    Vec3 operator()(Vec3 d) const { return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z}; }
-};
-// Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
-// branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
-// the dot product. Ties go to the lower index within each half-stream, then to the even one.
-struct SmallHullSupport {
-    const Vec3* v;
-    size_t n;
-    Vec3 operator()(Vec3 d) const {
-        size_t best0 = 0, best1 = 0;
-        double max0 = dot(d, v[0]), max1 = -INFINITY;
-        size_t i = 1;
-        for (; i + 1 < n; i += 2) {
-            const double s1 = dot(d, v[i]), s0 = dot(d, v[i + 1]);
-            best1 = s1 > max1 ? i : best1;
-            max1 = s1 > max1 ? s1 : max1;
-            best0 = s0 > max0 ? i + 1 : best0;
-            max0 = s0 > max0 ? s0 : max0;
-        }
-        if (i < n) {
-            const double s1 = dot(d, v[i]);
-            best1 = s1 > max1 ? i : best1;
-            max1 = s1 > max1 ? s1 : max1;
-        }
-        return v[max1 > max0 ? best1 : best0];
-    }
-};
-struct GenericSupport {
-    const Shape* s;
-    Vec3 operator()(Vec3 d) const { return support(*s, d); }
-};
-
-// Support of A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
-template <class SA, class SB>
-struct PairSupport {
-    SA sa;
-    SB sb;
-    Mat3 r;
-    Vec3 t;
-    // w = s_A(d) - s_B(-d); also returns the two support points (B's in A's frame).
-    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
-        out_a = sa(d);
-        out_b = r * sb(mul_transpose(r, -d)) + t;
-        return out_a - out_b;
-    }
-};
+using namespace kernels;
 
 // ---- The distance loop -------------------------------------------------------------------------
 
@@ -199,57 +141,6 @@ bool intersect_loop(const Pair& pair, double margin, Vec3& io_v, uint32_t max_it
     }
     out_iterations = it;
     return result;
-}
-
-// ---- Dispatch on the pair of support kinds -----------------------------------------------------
-
-enum class Core { Point, Segment, Box, SmallHull, Generic };
-
-struct CoreOf {
-    Core core;
-    double radius;
-};
-
-CoreOf classify(const Shape& s) {
-    switch (s.kind()) {
-        case ShapeKind::Point:
-            return {Core::Point, 0};
-        case ShapeKind::Sphere:
-            return {Core::Point, static_cast<const SphereShape&>(s).radius};
-        case ShapeKind::Segment:
-            return {Core::Segment, 0};
-        case ShapeKind::Capsule:
-            return {Core::Segment, static_cast<const CapsuleShape&>(s).radius};
-        case ShapeKind::Box:
-            return {Core::Box, 0};
-        case ShapeKind::ConvexHull: {
-            const auto& h = static_cast<const ConvexHullShape&>(s);
-            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0};
-            return {Core::Generic, 0};
-        }
-        default:
-            return {Core::Generic, 0};
-    }
-}
-
-template <class Fn>
-auto with_support(const Shape& s, Core c, Fn&& fn) {
-    switch (c) {
-        case Core::Point:
-            return fn(PointSupport{});
-        case Core::Segment:
-            return fn(SegmentSupport{s.kind() == ShapeKind::Capsule ? static_cast<const CapsuleShape&>(s).half_height
-                                                                    : static_cast<const SegmentShape&>(s).half_length});
-        case Core::Box:
-            return fn(BoxSupport{static_cast<const BoxShape&>(s).half_extents});
-        case Core::SmallHull: {
-            const auto& h = static_cast<const ConvexHullShape&>(s);
-            return fn(SmallHullSupport{h.vertices.data(), h.vertices.size()});
-        }
-        case Core::Generic:
-            break;
-    }
-    return fn(GenericSupport{&s});
 }
 
 // Calls fn(pair_support, margin) with the pair's support of A - B in A's frame.
