@@ -4,6 +4,7 @@
 # 22.5, 45, 90 and 162 degrees per step, with FCL (screw motion, zero translation, conservative
 # advancement) and Bullet f64's btContinuousConvexCollision on the same motions, in one program.
 #   scripts/motion-chart.sh [cases per set]  -> bench/results/motion.csv, bench/results/motion-chart.png
+#   KAIROS_MOTION_PLOT_ONLY=1 scripts/motion-chart.sh   redraws the chart from the existing CSV
 # Needs: Google Benchmark, FCL, Bullet's double build, gnuplot (Debian: gnuplot-nox).
 # The machines are shared and noisy: compare within one run (the CSV), not across runs.
 set -eu
@@ -11,9 +12,13 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${KAIROS_BENCH_BUILD:-$root/build/motion-bench}
 results=$root/bench/results
 mkdir -p "$results"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKAIROS_BUILD_BENCH=ON -DKAIROS_ABI_CHECK=OFF >/dev/null
-cmake --build "$build" --target bench_motion_cast -j2 >/dev/null
-"$build/bench/bench_motion_cast" "$results/motion.csv" "${1:-192}"
+if [ "${KAIROS_MOTION_PLOT_ONLY:-0}" = 1 ]; then
+    : # redraw the chart from the existing bench/results/motion.csv
+else
+    cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKAIROS_BUILD_BENCH=ON -DKAIROS_ABI_CHECK=OFF >/dev/null
+    cmake --build "$build" --target bench_motion_cast -j2 >/dev/null
+    "$build/bench/bench_motion_cast" "$results/motion.csv" "${1:-192}"
+fi
 
 gnuplot <<GP
 set terminal pngcairo size 1600,1150 font "DejaVu Sans,11"
