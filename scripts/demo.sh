@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# Quick start, the main job: install missing Debian packages, build Kairos (release preset) and run the demo.
+# Quick start, the main job: install missing Debian packages, build Kairos (release preset), run
+# the demo (fast and spinning objects that tunnel between frames, and their times of impact),
+# step the scene of a few thousand objects (picture: build/demo/kairos_scene.png or .ppm), and
+# regenerate the shape-cast accuracy/speed chart (bench/results/cast-chart.png).
 #
-# Usage: bash scripts/demo.sh [demo arguments]   (as root on Debian 12 it installs what is
-# missing; as another user it prints the apt-get line to run first).
+# Usage: bash scripts/demo.sh   (as root on Debian 12 it installs what is missing; as another
+# user it prints the apt-get line to run first). KAIROS_DEMO_NO_CHART=1 skips the chart.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -13,11 +16,26 @@ kairos_parallel_defaults
 cd "$root"
 
 cmake --preset release --log-level=WARNING
-cmake --build --preset release --target kairos_demo
-demo=build/release/examples/kairos_demo
-if [ ! -x "$demo" ]; then
-    echo "scripts/demo.sh: $demo was not built" >&2
-    exit 1
-fi
+cmake --build --preset release --target kairos_demo kairos_scene
+for program in kairos_demo kairos_scene; do
+    if [ ! -x "build/release/examples/$program" ]; then
+        echo "scripts/demo.sh: build/release/examples/$program was not built" >&2
+        exit 1
+    fi
+done
+
 echo
-exec "$demo" "$@"
+echo "==== 1. Three objects that tunnel between frames, and their first times of impact ===="
+build/release/examples/kairos_demo
+
+echo
+echo "==== 2. A world of a few thousand moving objects ===="
+mkdir -p build/demo
+build/release/examples/kairos_scene 30 build/demo/kairos_scene
+
+if [ "${KAIROS_DEMO_NO_CHART:-0}" != 1 ]; then
+    echo
+    echo "==== 3. Regenerating the shape-cast accuracy/speed chart (about a minute) ===="
+    bash scripts/cast-chart.sh
+    echo "chart: bench/results/cast-chart.png (data: bench/results/cast.csv)"
+fi
