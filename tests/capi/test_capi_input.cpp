@@ -455,9 +455,3 @@ TEST(WorldInput, StepStats) {
     kairos_world_destroy(w);
 }
 
-// Functions whose algorithms later issues build: valid input gets NOT_IMPLEMENTED, documented.
-TEST_F(Shapes, NotYetImplementedIsExplicit) {
-    kairos_world* w = nullptr;
-    ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
-    kairos_world_destroy(w);
-}
