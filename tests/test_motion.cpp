@@ -53,9 +53,17 @@ TEST(Motion, EndpointsShortestArcAndConstantRate) {
             EXPECT_NEAR(length(to_matrix(b.orientation) * on_axis_local - m.axis()), 0, 1e-12) << t;
         }
     }
-    // No rotation: a pure translation.
+    // No rotation: a pure translation, whatever the (equal) orientation, and for q and -q.
     const BodyState a{{0, 0, 0}, {0, 0, 0, 1}}, b{{1, 2, 3}, {0, 0, 0, 1}};
     EXPECT_FALSE(Motion(a, b).rotates());
+    std::mt19937_64 r2(seed + 1);
+    for (int i = 0; i < 200; ++i) {
+        const Quat q = random_unit(r2);
+        const BodyState s{{0, 0, 0}, q}, e{{1, 0, 0}, q}, e_neg{{1, 0, 0}, {-q.x, -q.y, -q.z, -q.w}};
+        EXPECT_FALSE(Motion(s, e).rotates()) << i;
+        EXPECT_FALSE(Motion(s, e_neg).rotates()) << i;
+        EXPECT_EQ(Motion(s, e).angle(), 0.0);
+    }
 }
 
 TEST(Motion, DiskBoundContainsEveryPointPath) {
