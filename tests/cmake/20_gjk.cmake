@@ -29,3 +29,6 @@ if(KAIROS_BULLET64_FOUND)
 else()
     message(STATUS "test_gjk_bullet skipped: bullet-float64 not found")
 endif()
+
+# Near contact on curved surfaces against a closed-form gap.
+kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk_curved_contact.cpp LIBS kairos_core)
