@@ -20,6 +20,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
 #include "gjk.hpp"
+#include "gjk_peer_bullet.hpp"
 #include "gjk_peer_shapes.hpp"
 
 static_assert(sizeof(btScalar) == sizeof(double), "this test needs Bullet's double-precision build");
@@ -27,45 +28,12 @@ static_assert(sizeof(btScalar) == sizeof(double), "this test needs Bullet's doub
 using namespace kairos;
 using peer::Kind;
 using peer::Spec;
+using peer::bullet_shape;
+using peer::bullet_transform;
 
 namespace {
 
 constexpr double kTol = 1e-10;
-
-// Exact shapes: zero margins on everything but spheres and capsules (whose margin is their radius).
-std::unique_ptr<btConvexShape> bullet_shape(const Spec& s) {
-    std::unique_ptr<btConvexShape> out;
-    switch (s.kind) {
-        case Kind::Box:
-            out = std::make_unique<btBoxShape>(btVector3(s.a, s.b, s.c));
-            break;
-        case Kind::Sphere:
-            return std::make_unique<btSphereShape>(s.a);
-        case Kind::Capsule:
-            return std::make_unique<btCapsuleShapeZ>(s.a, 2 * s.b);
-        case Kind::Cylinder:
-            out = std::make_unique<btCylinderShapeZ>(btVector3(s.a, s.a, s.b));
-            break;
-        case Kind::Cone:
-            out = std::make_unique<btConeShapeZ>(s.a, 2 * s.b);
-            break;
-        case Kind::Hull: {
-            auto h = std::make_unique<btConvexHullShape>();
-            for (const auto& p : s.verts) h->addPoint(btVector3(p[0], p[1], p[2]), false);
-            h->recalcLocalAabb();
-            out = std::move(h);
-            break;
-        }
-    }
-    out->setMargin(0);
-    return out;
-}
-
-btTransform bullet_transform(const Pose& p) {
-    const Mat3& r = p.rotation;
-    return btTransform(btMatrix3x3(r.r[0].x, r.r[0].y, r.r[0].z, r.r[1].x, r.r[1].y, r.r[1].z, r.r[2].x, r.r[2].y, r.r[2].z),
-                       btVector3(p.translation.x, p.translation.y, p.translation.z));
-}
 
 // Bullet's signed distance (negative when penetrating).
 double bullet_distance(const Spec& a, const Spec& b) {
