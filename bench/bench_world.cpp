@@ -38,6 +38,7 @@
 #include <fcl/narrowphase/collision_object.h>
 
 #include "broadphase.hpp"
+#include "scene_rng.hpp"
 
 using namespace kairos;
 
@@ -57,28 +58,7 @@ const char* scene_name(SceneKind k) {
     return "?";
 }
 
-// splitmix64.
-class Rng {
-public:
-    explicit Rng(uint64_t seed) : state_(seed) {}
-    uint64_t next() {
-        uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform(double lo, double hi) { return lo + (hi - lo) * (static_cast<double>(next() >> 11) * 0x1p-53); }
-    Vec3 direction() {
-        for (;;) {
-            const Vec3 v{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
-            const double l = length(v);
-            if (l > 0.1 && l <= 1) return v / l;
-        }
-    }
-
-private:
-    uint64_t state_;
-};
+using scene::Rng;
 
 // Unit cubes; per step each moving cube's centre advances by its velocity and the velocity
 // reflects off the walls (a component flips once the centre is past the wall).
