@@ -25,7 +25,8 @@ enum class Termination : int32_t {
     NearContact = 2,      // ||v||^2 <= kNearContact * max ||y||^2: touching within rounding
     FullSimplex = 3,      // the simplex holds the origin (or, for rounded shapes, the cores are
                           // closer than the sum of the radii): the shapes intersect
-    JohnsonFailed = 4,    // no valid sub-simplex, and the backup pass did not improve: last estimate
+    JohnsonFailed = 4,    // no valid sub-simplex, and the backup pass did not improve; or the
+                          // sub-simplex found lies below the proven lower bound: last estimate
     RepeatedSupport = 5,  // the support point was already a vertex of the last step's simplex
     NoProgress = 6,       // ||v||^2 decreased by no more than machine epsilon (relative)
     MaxIterations = 7,    // the iteration guard
@@ -191,6 +192,18 @@ struct Simplex {
             p += lambda[i] * y[i];
         }
         v = p;
+    }
+
+    // Goes back to subset `old_bits` of the current points after an add() whose result is not
+    // trusted: v (and lambda, if wanted) by the same arithmetic as when it was first found.
+    void restore(unsigned old_bits) {
+        last_all = old_bits;
+        if (old_bits == 0) {
+            bits = 0;
+            v = Vec3{};
+            return;
+        }
+        set_from_subset(old_bits);
     }
 
     // Barycentric coordinates of v over the current simplex, after iterations with want_lambda off

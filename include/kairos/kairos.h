@@ -89,7 +89,7 @@ extern "C" {
 #define KAIROS_TERMINATION_RELATIVE_ERROR    1  /* ||v||^2 - v.w <= tolerance * ||v||^2 (distance within tolerance) */
 #define KAIROS_TERMINATION_NEAR_CONTACT      2  /* ||v||^2 <= eps * max ||y||^2: touching within rounding */
 #define KAIROS_TERMINATION_FULL_SIMPLEX      3  /* the simplex holds the origin: the shapes intersect */
-#define KAIROS_TERMINATION_JOHNSON_FAILED    4  /* no valid sub-simplex even after the backup pass: last estimate returned */
+#define KAIROS_TERMINATION_JOHNSON_FAILED    4  /* no valid sub-simplex after the backup pass, or one below the proven lower bound (rounding): last estimate returned */
 #define KAIROS_TERMINATION_REPEATED_SUPPORT  5  /* the support point was already in the simplex: converged to rounding */
 #define KAIROS_TERMINATION_NO_PROGRESS       6  /* ||v|| stopped decreasing by more than machine epsilon */
 #define KAIROS_TERMINATION_MAX_ITERATIONS    7  /* the iteration guard fired; the result is the best estimate so far */
