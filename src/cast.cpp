@@ -396,7 +396,7 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
     const CoreOf ca = classify(a), cb = classify(b);
     // B's frame in A's: x -> Ra^T Rb x + Ra^T (pb - pa); differences are taken in the world before
     // rotating, so shapes far from the world origin keep their relative precision.
-    const Mat3 rot = transpose(pose_a.rotation) * pose_b.rotation;
+    const Mat3 rot = transpose_mul(pose_a.rotation, pose_b.rotation);
     const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
     const Vec3 ta = pose_a.to_local_direction(translation_a);
     const Vec3 tb = pose_a.to_local_direction(translation_b);

@@ -21,17 +21,17 @@ struct LocalDistance {
     Termination termination;
 };
 
-// margin: sum of the radii folded out of the shapes (0 for polytopes). The distance of the
-// rounded shapes is ||v|| - margin.
-// True when sqrt(nv) < sqrt(lower_sq) - E, E = 16 eps sqrt(w_norm_sq) the rounding allowance of the
-// bound (v.w carries an absolute error of a few eps ||v|| ||w||). Squares only: (L - |v|)(L + |v|) =
-// lower_sq - nv, and (L - |v|) > E <=> (lower_sq - nv)^2 > E^2 (L + |v|)^2, with (L + |v|)^2 <= 4 L^2.
+// True when sqrt(nv) < sqrt(lower_sq) - E, with E = 16 eps ||w|| the rounding allowance of the bound
+// (v.w carries an absolute error of a few eps ||v|| ||w||). Squares only: lower_sq - nv =
+// (L - |v|)(L + |v|) and L + |v| <= 2L, so (lower_sq - nv)^2 > 4 lower_sq E^2 implies L - |v| > E.
 inline bool below_lower_bound(double nv, double lower_sq, double w_norm_sq) {
     constexpr double k = 16 * 2.220446049250313e-16;
     const double d = lower_sq - nv;
     return d > 0 && d * d > 4 * lower_sq * (k * k * w_norm_sq);
 }
 
+// margin: sum of the radii folded out of the shapes (0 for polytopes). The distance of the
+// rounded shapes is ||v|| - margin.
 template <class Pair>
 LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, uint32_t max_iterations) {
     Simplex s;
@@ -45,8 +45,10 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
     // Squared lower bound on the cores' distance: max over iterations of (v.w)^2 / ||v||^2 with
     // v.w > 0 (every point x of A - B has v.x >= v.w). No point of A - B is closer to the origin,
     // so an estimate below it is a rounding artefact (see below).
-    double lower_sq = 0;
-    double w_norm_sq = 0;  // largest ||w||^2 seen: the scale of the rounding in v.w
+    // Kept as a fraction lower_num / lower_den (no division in the loop), with the w that gave it
+    // (its norm scales the rounding of v.w).
+    double lower_num = 0, lower_den = 1;
+    Vec3 lower_w{};
 
     LocalDistance out{};
     out.termination = Termination::MaxIterations;
@@ -57,9 +59,10 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
         ++it;
         if (s.bits != 0) {
             const double vw = dot(v, w);
-            if (vw > 0) {
-                const double l2 = vw * (vw / vv);
-                lower_sq = l2 > lower_sq ? l2 : lower_sq;
+            if (vw > 0 && vw * vw * lower_den > lower_num * vv) {
+                lower_num = vw * vw;
+                lower_den = vv;
+                lower_w = w;
             }
             // Rule 1: the lower bound vw/||v|| is within tolerance of the upper bound ||v||. With a
             // margin the distance is ||v|| - margin, so the gap is compared with that instead.
@@ -73,10 +76,6 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
                 out.termination = Termination::RepeatedSupport;
                 break;
             }
-        }
-        {
-            const double ww = dot(w, w);
-            w_norm_sq = ww > w_norm_sq ? ww : w_norm_sq;
         }
         const unsigned prev_bits = s.bits;
         const Simplex::Outcome o = s.add(w, a, b, s.bits != 0 ? vv : INFINITY);
@@ -95,7 +94,7 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
         // triangle of support points a few ulps apart on a curved surface, whose plane passes
         // nearer the origin than any of its points). Trusting it would end the query on rules 2
         // or "cores within the radii" with shapes still apart. The previous estimate is kept.
-        if (nv < lower_sq && below_lower_bound(nv, lower_sq, w_norm_sq)) {
+        if (nv * lower_den < lower_num && below_lower_bound(nv, lower_num / lower_den, dot(lower_w, lower_w))) {
             s.restore(prev_bits);
             out.termination = Termination::JohnsonFailed;
             break;
@@ -182,7 +181,7 @@ auto with_pair(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& p
     const CoreOf ca = classify(a), cb = classify(b);
     // B's frame in A's: x -> Ra^T Rb x + Ra^T (tb - ta). The translation difference is taken
     // before rotating, so shapes far from the world origin keep their relative precision.
-    const Mat3 r = transpose(pose_a.rotation) * pose_b.rotation;
+    const Mat3 r = transpose_mul(pose_a.rotation, pose_b.rotation);
     const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
     const double margin = ca.radius + cb.radius;
     return with_support(a, ca.core, [&](auto sa) {

@@ -144,45 +144,55 @@ struct Simplex {
     // slivers (two points 1e-5 apart and a third far away), which moves the closest points
     // sideways by far more than the distance's own error. The determinant form stays as the
     // fallback for degenerate geometry.
-    void set_from_subset(unsigned s) {
-        bits = s;
-        const int count = kBitCount[s];
-        if (count == 1) {
-            const int i = std::countr_zero(s);
+    template <unsigned S>
+    [[gnu::always_inline]] inline void set_from_subset_t() {
+        static_assert(S < 16u);
+        bits = S;
+        constexpr int count = kBitCount[S];
+        if constexpr (count == 0) {
+            v = Vec3{};
+        } else if constexpr (count == 1) {
+            constexpr int i = std::countr_zero(S);
             lambda[i] = 1;
             v = y[i];
             return;
-        }
-        if (count == 2) {
-            const int i = std::countr_zero(s), j = 31 - std::countl_zero(s);
-            const Vec3 e = y[j] - y[i];
-            const double ee = dot(e, e);
-            if (ee > 0 && std::isfinite(ee)) {
-                const double t = -dot(y[i], e) / ee;
-                v = y[i] + t * e;
-                lambda[i] = 1 - t;
-                lambda[j] = t;
-                return;
+        } else {
+            if constexpr (count == 2) {
+                constexpr int i = std::countr_zero(S), j = 31 - std::countl_zero(S);
+                const Vec3 e = y[j] - y[i];
+                const double ee = dot(e, e);
+                if (ee > 0 && std::isfinite(ee)) [[likely]] {
+                    const double t = -dot(y[i], e) / ee;
+                    v = y[i] + t * e;
+                    lambda[i] = 1 - t;
+                    lambda[j] = t;
+                    return;
+                }
+            } else if constexpr (count == 3) {
+                // The origin projected on the triangle's plane. Besides the coordinates, this keeps
+                // v's direction to a few eps when ||v|| << ||y|| (nearly touching parallel faces),
+                // so v.w keeps its sign in the separation test.
+                constexpr int i = std::countr_zero(S), j = std::countr_zero(S & (S - 1)), k = 31 - std::countl_zero(S);
+                const Vec3 n = cross(y[j] - y[i], y[k] - y[i]);
+                const double nn = dot(n, n);
+                if (nn > 0 && std::isfinite(nn)) [[likely]] {
+                    const double inv = 1 / nn;
+                    const Vec3 q = (dot(n, y[i]) * inv) * n;
+                    v = q;
+                    if (!want_lambda) return;
+                    const Vec3 qi = y[i] - q, qj = y[j] - q, qk = y[k] - q;
+                    lambda[i] = dot(cross(qj, qk), n) * inv;
+                    lambda[j] = dot(cross(qk, qi), n) * inv;
+                    lambda[k] = dot(cross(qi, qj), n) * inv;
+                    return;
+                }
             }
-        } else if (count == 3) {
-            // The origin projected on the triangle's plane. Besides the coordinates, this keeps v's
-            // direction to a few eps when ||v|| << ||y|| (nearly touching parallel faces), so v.w
-            // keeps its sign in the separation test.
-            const int i = std::countr_zero(s), j = std::countr_zero(s & (s - 1)), k = 31 - std::countl_zero(s);
-            const Vec3 n = cross(y[j] - y[i], y[k] - y[i]);
-            const double nn = dot(n, n);
-            if (nn > 0 && std::isfinite(nn)) {
-                const double inv = 1 / nn;
-                const Vec3 q = (dot(n, y[i]) * inv) * n;
-                v = q;
-                if (!want_lambda) return;
-                const Vec3 qi = y[i] - q, qj = y[j] - q, qk = y[k] - q;
-                lambda[i] = dot(cross(qj, qk), n) * inv;
-                lambda[j] = dot(cross(qk, qi), n) * inv;
-                lambda[k] = dot(cross(qi, qj), n) * inv;
-                return;
-            }
+            set_from_determinants(S);
         }
+    }
+
+    // The determinant form of v and lambda over subset s (degenerate geometry, full simplex).
+    [[gnu::noinline]] void set_from_determinants(unsigned s) {
         double sum = 0;
         for (unsigned r = s; r; r &= r - 1) sum += det[s][std::countr_zero(r)];
         Vec3 p{};
@@ -194,15 +204,19 @@ struct Simplex {
         v = p;
     }
 
+    // set_from_subset_t for a subset known at run time.
+    void set_from_subset(unsigned s) {
+        using Fn = void (Simplex::*)();
+        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+            return std::array<Fn, 16>{&Simplex::set_from_subset_t<M>...};
+        }(std::make_integer_sequence<unsigned, 16>{});
+        (this->*table[s & 15u])();
+    }
+
     // Goes back to subset `old_bits` of the current points after an add() whose result is not
     // trusted: v (and lambda, if wanted) by the same arithmetic as when it was first found.
     void restore(unsigned old_bits) {
         last_all = old_bits;
-        if (old_bits == 0) {
-            bits = 0;
-            v = Vec3{};
-            return;
-        }
         set_from_subset(old_bits);
     }
 
@@ -340,7 +354,7 @@ struct Simplex {
             return false;  // decided geometrically
         } else {
             if (!valid_t<S, All>()) return false;
-            set_from_subset(S);
+            set_from_subset_t<S>();
             return true;
         }
     }

@@ -59,8 +59,20 @@ inline Mat3 operator*(const Mat3& a, const Mat3& b) {
 }
 inline Mat3 transpose(const Mat3& m) {
     Mat3 t;
-    for (int i = 0; i < 3; ++i) t.r[i] = m.col(i);
+    t.r[0] = {m.r[0].x, m.r[1].x, m.r[2].x};
+    t.r[1] = {m.r[0].y, m.r[1].y, m.r[2].y};
+    t.r[2] = {m.r[0].z, m.r[1].z, m.r[2].z};
     return t;
+}
+// a^T * b without forming the transpose (row i of the product is sum_k a[k][i] b[k]). Written out
+// component by component: a transpose built in memory and read back by rows stalls on store
+// forwarding, which cost a fifth of a box/box distance query.
+inline Mat3 transpose_mul(const Mat3& a, const Mat3& b) {
+    Mat3 c;
+    c.r[0] = a.r[0].x * b.r[0] + a.r[1].x * b.r[1] + a.r[2].x * b.r[2];
+    c.r[1] = a.r[0].y * b.r[0] + a.r[1].y * b.r[1] + a.r[2].y * b.r[2];
+    c.r[2] = a.r[0].z * b.r[0] + a.r[1].z * b.r[1] + a.r[2].z * b.r[2];
+    return c;
 }
 inline double determinant(const Mat3& m) { return dot(m.r[0], cross(m.r[1], m.r[2])); }
 
