@@ -70,14 +70,10 @@ Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
     return Simplex::Outcome::Backup;
 }
 
-// A tetrahedron whose signed volume is rounding noise (coplanar support points, common on flat
-// faces and disks) says nothing about whether it holds x: signed volumes of 1e-16 gave "inside" for
-// x far outside the points' polygon. Such a Full is replaced by the best proper sub-simplex.
+// After a rebuild: a flat tetrahedron (Simplex::flat_tetrahedron; add() applies the same test)
+// says nothing about whether it holds x, and is replaced by the best proper sub-simplex.
 Simplex::Outcome check_full(Simplex& s) {
-    const Vec3 e1 = s.y[1] - s.y[0], e2 = s.y[2] - s.y[0], e3 = s.y[3] - s.y[0];
-    const double vol = std::fabs(dot(e1, cross(e2, e3)));
-    const double scale = length(e1) * length(e2) * length(e3);
-    if (vol > 1e-10 * scale) return Simplex::Outcome::Full;
+    if (!s.flat_tetrahedron()) return Simplex::Outcome::Full;
     return johnson_proper(s, 15u);
 }
 
@@ -270,7 +266,6 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
             sx.bits = 0;
             o = sx.add(w, a, b, INFINITY);
         }
-        if (o == Simplex::Outcome::Full) o = check_full(sx);
         // Near-duplicate support points (a rim point found again from a direction one ulp away)
         // make the simplex degenerate: its barycentric coordinates blow up (+-1e14 seen) and v is
         // then a point off the simplex, short enough to fake a hit. Treated as a Johnson failure.

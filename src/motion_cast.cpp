@@ -156,10 +156,11 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
     uint32_t iterations = 0;
     double t0 = 0;
     Pose pa = pose_at(ma, 0), pb = pose_at(mb, 0);
-    // Distance at the current poses. GJK's FullSimplex can come from a flat tetrahedron on a
-    // curved rim (capsule/cone 1e-6 apart at tolerance 1e-10 read as intersecting): such a claim
-    // is checked by a cast with no motion (which rejects flat tetrahedra) and, when that finds the
-    // shapes apart, measured again at a coarse tolerance.
+    // Distance at the current poses. A FullSimplex claim is checked by a cast with no motion and,
+    // when that finds the shapes apart, measured again at a coarse tolerance. (Written when GJK
+    // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; gjk.hpp now rejects
+    // flat tetrahedra and sub-simplices below the lower bound, and the motion tests pass without
+    // this check. It stays as a cheap second opinion: it runs only on an intersection claim.)
     double dist_tolerance = loop_tolerance;  // the relative tolerance of the query behind `dist`
     auto distance_now = [&](double tol) {
         DistanceResult d = gjk_distance(a, pa, b, pb, tol, max_iterations);
