@@ -69,7 +69,7 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
     std::vector<double> excess_polytope, excess_curved;  // (distance - gap) / scale
     double worst_low = 0;  // largest (gap - distance) / scale
     int intersect_cases = 0, intersect_touching = 0;
-    int above_floor = 0;   // curved pairs off by more than tolerance * gap + 1e-9 of the scale
+    int above_floor = 0;   // curved pairs off by more than tolerance * gap + 1e-12 of the scale
     for (int ka = 0; ka < 6; ++ka) {
         for (int kb = 0; kb < 6; ++kb) {
             for (int i = 0; i < 120; ++i) {
@@ -114,10 +114,12 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
                         ASSERT_FALSE(d.intersecting) << where();
                         // |v| is a point of A - B: the distance is never below the gap beyond rounding.
                         EXPECT_GE(e, -1e-13) << where();
-                        // Above it by at most the tolerance, or the double-precision floor of curved
-                        // surfaces (README, known issues); polytopes converge to rounding.
-                        EXPECT_LE(e, tol * g + (polytopes ? 1e-13 : 1e-6)) << where();
-                        if (!polytopes && e > tol * g + 1e-9) ++above_floor;
+                        // Above it by at most the tolerance, or rounding: a few eps of the scale
+                        // for polytopes; for curved shapes the measured floor is 1e-11 of the
+                        // scale (3.1e-7 before the closest point of a segment or triangle was
+                        // taken from its point nearest the origin).
+                        EXPECT_LE(e, tol * g + (polytopes ? 1e-13 : 1e-10)) << where();
+                        if (!polytopes && e > tol * g + 1e-12) ++above_floor;
                     }
                 }
             }
@@ -130,7 +132,7 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
     const auto [pmed, pmax] = stats(excess_polytope);
     const auto [cmed, cmax] = stats(excess_curved);
     std::printf("%d separated pairs, %d reported intersecting; (distance - gap) / scale: polytopes median %.3g max %.3g, "
-                "curved median %.3g max %.3g (%d above tolerance + 1e-9); largest shortfall %.3g\n",
+                "curved median %.3g max %.3g (%d above tolerance + 1e-12); largest shortfall %.3g\n",
                 cases, intersecting, pmed, pmax, cmed, cmax, above_floor, worst_low);
     std::printf("gjk_intersect: %d of %d separated placements reported touching\n", intersect_touching, intersect_cases);
     std::printf("terminations:");
