@@ -195,7 +195,7 @@ Vec3 world_direction(const Pose& pose, Vec3 local) { return pose.rotation * loca
 
 // a / |a| given |a|^2 (one square root, one division); when a is zero or its square under- or
 // overflows, the careful normalisation of a, then of `fallback`, then +x.
-Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
+inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
     if (norm_sq > 1e-200 && norm_sq < 1e200) return (1 / std::sqrt(norm_sq)) * a;
     return normalized_or(a, normalized_or(fallback, {1, 0, 0}));
 }
@@ -205,12 +205,7 @@ Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
 DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
                             uint32_t max_iterations) {
     if (max_iterations == 0) max_iterations = 1;
-    double radius_a = 0, radius_b = 0;
-    {
-        const CoreOf ca = classify(a), cb = classify(b);
-        radius_a = ca.radius;
-        radius_b = cb.radius;
-    }
+    const double radius_a = classify(a).radius, radius_b = classify(b).radius;
     Vec3 center_offset;
     const LocalDistance l = with_pair(a, pose_a, b, pose_b, [&](const auto& pair, double margin) {
         center_offset = pair.t;
@@ -223,20 +218,17 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
     r.intersecting = l.intersecting;
     // Axis from A toward B: -v (v = a - b). Without a usable v (intersecting at the origin), the
     // direction between the local origins, or +x.
+    const double core = std::sqrt(l.core_norm_sq);
     const Vec3 n = unit_or(-l.v, l.core_norm_sq, center_offset);
     Vec3 pa = l.point_a, pb = l.point_b;
     if (l.intersecting) {
         r.distance = 0;
-        // One contact point, inside both shapes: on the cores' closest points moved onto the overlap.
-        Vec3 p = pa;
-        if (radius_a + radius_b > 0) {
-            const double core = std::sqrt(l.core_norm_sq);
-            // The point between the cores' closest points that splits their gap in the ratio of the radii.
-            p = (radius_a + radius_b) > 0 ? pa + ((core * radius_a / (radius_a + radius_b)) * n) : pa;
-        }
-        pa = pb = p;
+        // One contact point, inside both shapes: on the cores' closest points moved onto the overlap,
+        // the point between them that splits their gap in the ratio of the radii.
+        if (radius_a + radius_b > 0) pa = pa + ((core * radius_a / (radius_a + radius_b)) * n);
+        pb = pa;
     } else {
-        r.distance = std::sqrt(l.core_norm_sq) - (radius_a + radius_b);
+        r.distance = core - (radius_a + radius_b);
         if (!(r.distance > 0)) r.distance = 0;
         pa = pa + radius_a * n;
         pb = pb - radius_b * n;

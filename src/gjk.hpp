@@ -261,10 +261,11 @@ struct Simplex {
             out_b = pb[i];
             return;
         }
+        const double inv = 1 / sum;
         for (unsigned r = bits; r; r &= r - 1) {
             const int i = std::countr_zero(r);
-            a += (l[i] / sum) * pa[i];
-            b += (l[i] / sum) * pb[i];
+            a += (l[i] * inv) * pa[i];
+            b += (l[i] * inv) * pb[i];
         }
         out_a = a;
         out_b = b;
