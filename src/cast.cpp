@@ -242,7 +242,14 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
         };
 
         Simplex::Outcome o;
-        if (!moved && sx.contains(w)) {
+        if (!moved && sx.contains(w) && sx.refine_dropped()) {
+            // The point came back because rounding dropped it: the simplex now holds the nearer
+            // face found geometrically, and the iteration goes on from its estimate. Each success
+            // shrinks ||v|| by more than rounding, so this cannot cycle (and the iteration cap holds).
+            vv = dot(sx.v, sx.v);
+            v = sx.v;
+            continue;
+        } else if (!moved && sx.contains(w)) {
             // Rule 5 (only while x stays put: after a clip a known point is new information).
             if (!restart(vv)) {
                 out.termination = Termination::RepeatedSupport;

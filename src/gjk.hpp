@@ -131,6 +131,49 @@ struct Simplex {
         return false;
     }
 
+    // After a support point w came back (contains(w)) although Johnson's test had just dropped it:
+    // in exact arithmetic that cannot happen, so the test was decided by rounding. The closest
+    // point of the hull of the last simplex before reduction is found again geometrically: over
+    // every proper subset, the projection of the origin with edge vectors, kept when its
+    // barycentric coordinates are non-negative, the nearest such one winning (the closest point of
+    // a polytope is the nearest of its faces' interior projections). True when it is nearer than
+    // the current estimate by more than rounding: v, lambda and bits then describe it, and the
+    // iteration can go on.
+    bool refine_dropped() {
+        const unsigned all = last_all;
+        if ((all & ~bits) == 0) return false;  // nothing was dropped
+        const double current = dot(v, v);
+        const unsigned keep_bits = bits;
+        const Vec3 keep_v = v;
+        double keep_lambda[4];
+        for (int i = 0; i < 4; ++i) keep_lambda[i] = lambda[i];
+        const bool keep_want = want_lambda;
+        want_lambda = true;
+        double best = current * (1 - 64 * kNoProgress);
+        unsigned best_s = 0;
+        for (unsigned sub = 1; sub < 16u; ++sub) {
+            if ((sub & ~all) != 0 || sub == 15u) continue;
+            set_from_subset(sub);
+            bool inside = true;
+            for (unsigned r = sub; r; r &= r - 1)
+                if (!(lambda[std::countr_zero(r)] >= 0)) inside = false;
+            const double n2 = dot(v, v);
+            if (inside && n2 < best) {
+                best = n2;
+                best_s = sub;
+            }
+        }
+        if (best_s != 0) {
+            set_from_subset(best_s);
+        } else {
+            bits = keep_bits;
+            v = keep_v;
+            for (int i = 0; i < 4; ++i) lambda[i] = keep_lambda[i];
+        }
+        want_lambda = keep_want;
+        return best_s != 0;
+    }
+
     double max_norm_sq() const {
         double m = 0;
         for (unsigned r = bits; r; r &= r - 1) {

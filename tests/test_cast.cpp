@@ -61,10 +61,11 @@ Stats run_pair(uint64_t seed, Kind ka, Kind kb, int count, double tolerance, dou
     // (over the cosine of the approach angle), plus rounding of the far-from-origin coordinates.
     const double rounding = 1e-14 * (1 + length(base) / scale);
     // Curved shapes (cylinder and cone rims, cone apex): GJK about a point on a curved surface
-    // converges linearly and stalls at about 1e-7 of the size in double precision, so a tighter
-    // tolerance stops there (early, never late).
+    // converges linearly and stops on its rounding guards a little short of the surface (early,
+    // never late): at most 4.9e-8 of the size over the million-cast run, 1e-7 allowed. (Before
+    // Simplex::refine_dropped it stalled near 1e-6 and the allowance was 1e-5.)
     const bool curved = ka == Kind::Cylinder || ka == Kind::Cone || kb == Kind::Cylinder || kb == Kind::Cone;
-    const double point_allow = std::max(1e3 * tolerance, curved ? 1e-5 : 0.0) + 1e3 * rounding;
+    const double point_allow = std::max(1e3 * tolerance, curved ? 1e-7 : 0.0) + 1e3 * rounding;
     for (int i = 0; i < count; ++i) {
         Solid a = random_solid(rng, ka, scale), b = random_solid(rng, kb, scale);
         const Cast c = random_cast(rng, a, b, base, motion_scale);
@@ -111,8 +112,8 @@ TEST(CastRandom, EveryPairOfKindsAgainstOracle) {
             EXPECT_GT(st.truth_hits, st.casts / 5) << name;
             EXPECT_LE(st.truth_hits, 17 * st.casts / 20) << name;
             // The normal is a normal of A - B at the true contact, to the tolerance (curved shapes:
-            // to where GJK stalls, about 1e-7 of the size).
-            for (double e : st.normal_gap) EXPECT_LT(e, 1e-5) << name;
+            // to where GJK stops, below 1e-7 of the size).
+            for (double e : st.normal_gap) EXPECT_LT(e, 1e-7) << name;
             all.misses += st.misses;
             all.false_hits += st.false_hits;
             all.casts += st.casts;
@@ -204,7 +205,7 @@ TEST(RayCast, RandomRaysOnEveryKind) {
             const cast_oracle::Truth t = cast_oracle::toi(s.body, point, {}, p3(translation));
             const double size = static_cast<double>(cast_oracle::size_of(s.body, point));
             const bool curved = k == Kind::Cylinder || k == Kind::Cone;
-            const double allow = std::max(1e3 * kTol, curved ? 1e-5 : 0.0);
+            const double allow = std::max(1e3 * kTol, curved ? 1e-7 : 0.0);  // see run_pair
             const Verdict v = judge(s.body, point, {}, p3(translation), t, r, allow * size / length(translation), allow);
             ++n;
             hits += t.hit;
@@ -444,4 +445,51 @@ TEST(CastLong, DISABLED_MillionCastsAgainstOracle) {
     EXPECT_EQ(all.misses, 0);
     EXPECT_EQ(all.false_hits, 0);
     EXPECT_EQ(all.late, 0);
+}
+
+// Rays onto a cylinder (radius 1, half height 1) with a closed-form first hit: the entry into the
+// slab |z| <= 1 and the disk x^2 + y^2 <= 1. Every hit must be found, never late, and the ray
+// point at toi must lie within a small distance of the surface (measured directly, so grazing rays
+// do not inflate it). Regression: the support point that Johnson's test dropped by rounding came
+// straight back and ended the cast on "repeated support" up to 3.5e-7 short of the surface; the
+// simplex is now refined geometrically instead (Simplex::refine_dropped).
+TEST(CastCurved, RaysOntoACylinderAgainstClosedForm) {
+    const uint32_t seed = 5;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    CylinderShape cyl(1.0, 1.0);
+    std::vector<double> gaps;
+    int hits = 0, rays = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const Vec3 o{3 * u(rng), 3 * u(rng), 3 * u(rng)};
+        const Vec3 target{0.99 * u(rng), 0.99 * u(rng), u(rng)};
+        const Vec3 r = 2.0 * (target - o);
+        double t0 = 0, t1 = 1;
+        if (r.z != 0) {
+            const double a = (-1 - o.z) / r.z, b = (1 - o.z) / r.z;
+            t0 = std::max(t0, std::min(a, b));
+            t1 = std::min(t1, std::max(a, b));
+        }
+        const double qa = r.x * r.x + r.y * r.y, qb = 2 * (o.x * r.x + o.y * r.y), qc = o.x * o.x + o.y * o.y - 1;
+        const double disc = qb * qb - 4 * qa * qc;
+        if (!(disc > 0) || r.z == 0) continue;
+        t0 = std::max(t0, (-qb - std::sqrt(disc)) / (2 * qa));
+        t1 = std::min(t1, (-qb + std::sqrt(disc)) / (2 * qa));
+        if (!(t0 < t1) || t0 <= 0) continue;  // misses the solid, or starts inside
+        ++rays;
+        const CastResult c = ray_cast(cyl, Pose{}, o, r, kTol, kMaxIt);
+        ASSERT_TRUE(c.hit) << "seed " << seed << " ray " << i;
+        ++hits;
+        EXPECT_LE(c.toi, t0 + 1e-12) << "late; seed " << seed << " ray " << i;
+        const Vec3 x = o + c.toi * r;
+        const double rho = std::sqrt(x.x * x.x + x.y * x.y);
+        const double out_r = std::max(rho - 1, 0.0), out_z = std::max(std::fabs(x.z) - 1, 0.0);
+        gaps.push_back(std::sqrt(out_r * out_r + out_z * out_z));
+        EXPECT_LT(gaps.back(), 1e-8) << "seed " << seed << " ray " << i << " toi " << c.toi << " truth " << t0;
+    }
+    std::sort(gaps.begin(), gaps.end());
+    std::printf("rays onto a cylinder: %d rays, %d hits; distance of the ray point at toi from the surface: median %.3g "
+                "p99 %.3g max %.3g\n",
+                rays, hits, gaps[gaps.size() / 2], gaps[gaps.size() * 99 / 100], gaps.back());
+    EXPECT_GT(rays, 10000);  // most random rays reach the solid: the set exercises the hit path
 }

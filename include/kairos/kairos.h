@@ -250,8 +250,8 @@ KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* po
  * on the surface, world frame. A ray starting inside (or on the surface): hit, toi 0, normal
  * -translation (unit), or for a zero translation the unit direction from the shape's local origin
  * toward the ray's origin (+z when they coincide). No hit: hit 0, toi 1, point and normal
- * unspecified. Curved shapes (cylinders, cones) converge to about 1e-7 of their size in double
- * precision; a tighter tolerance stops there, early rather than late. */
+ * unspecified. On curved shapes (cylinders, cones) the double-precision iteration may stop short of
+ * the surface by up to about 5e-8 of their size whatever tighter tolerance is asked: early, never late. */
 KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pose,
                                    kairos_vec3 origin, kairos_vec3 translation,
                                    const kairos_query_settings* settings, kairos_cast_result* out);
