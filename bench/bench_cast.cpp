@@ -18,8 +18,8 @@
 using namespace cast_bench;
 
 int main(int argc, char** argv) {
-    FILE* out = argc > 1 ? std::fopen(argv[1], "w") : stdout;
-    if (!out) return 1;
+    FILE* out = open_output(argc, argv);
+    if (!out) return 2;
     csv_header(out);
     const double tolerances[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-10, 1e-12};
     for (const Scenario& sc : kScenarios) {

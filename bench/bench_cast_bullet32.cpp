@@ -13,8 +13,8 @@
 using namespace cast_bench;
 
 int main(int argc, char** argv) {
-    FILE* out = argc > 1 ? std::fopen(argv[1], "w") : stdout;
-    if (!out) return 1;
+    FILE* out = open_output(argc, argv);
+    if (!out) return 2;
     for (const Scenario& sc : kScenarios) {
         const std::vector<Item> set = make_set(sc);
         std::vector<kairos::CastResult> res(set.size());

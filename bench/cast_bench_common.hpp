@@ -121,6 +121,19 @@ inline Timing time_casts(const std::function<void(size_t)>& one, size_t count, i
     return t;
 }
 
+// The CSV destination: argv[1] if given, else standard output. Anything starting with '-' (such as
+// --help) gets the usage on standard error and null, instead of becoming a file of that name.
+inline FILE* open_output(int argc, char** argv) {
+    if (argc > 2 || (argc == 2 && argv[1][0] == '-')) {
+        std::fprintf(stderr, "usage: %s [out.csv]   (CSV rows; default: standard output)\n", argv[0]);
+        return nullptr;
+    }
+    if (argc < 2) return stdout;
+    FILE* f = std::fopen(argv[1], "w");
+    if (!f) std::fprintf(stderr, "%s: cannot write %s\n", argv[0], argv[1]);
+    return f;
+}
+
 inline void csv_header(FILE* f) {
     std::fprintf(f, "scenario,method,tolerance,ns_median,iterations_mean,toi_err_median,toi_err_max,normal_err_median,"
                     "normal_err_max,point_err_median,point_err_max,misses,false_hits,hits,casts,ns_mean\n");
