@@ -362,6 +362,16 @@ Vec3 first_direction(Vec3 r, Vec3 toward_x) {
 
 }  // namespace
 
+// The part of a result both casts fill alike: iterations, termination, hit, and toi (1 on a miss).
+static CastResult result_head(const LocalCast& l) {
+    CastResult out;
+    out.iterations = l.iterations;
+    out.termination = l.termination;
+    out.hit = l.hit;
+    out.toi = l.hit ? l.lambda : 1;
+    return out;
+}
+
 CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations, ClipPolicy policy) {
     if (max_iterations == 0) max_iterations = 1;
@@ -372,15 +382,8 @@ CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 tran
         return cast_loop(SingleSupport<decltype(core)>{core}, c.radius, s, r, first_direction(r, s), tolerance,
                          max_iterations, policy);
     });
-    CastResult out;
-    out.iterations = l.iterations;
-    out.termination = l.termination;
-    out.hit = l.hit;
-    if (!l.hit) {
-        out.toi = 1;
-        return out;
-    }
-    out.toi = l.lambda;
+    CastResult out = result_head(l);
+    if (!l.hit) return out;
     // Start inside: -r, or from the shape's origin toward the ray's start, or world +z.
     const Vec3 fallback = normalized_or(-r, normalized_or(s, pose.to_local_direction({0, 0, 1})));
     const Vec3 n = contact_normal(l, c.radius, fallback);
@@ -396,10 +399,9 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
                       Vec3 translation_b, double tolerance, uint32_t max_iterations, ClipPolicy policy) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
-    // B's frame in A's: x -> Ra^T Rb x + Ra^T (pb - pa); differences are taken in the world before
-    // rotating, so shapes far from the world origin keep their relative precision.
-    const Mat3 rot = transpose_mul(pose_a.rotation, pose_b.rotation);
-    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    const RelativeFrame frame = relative_frame(pose_a, pose_b);
+    const Mat3& rot = frame.r;
+    const Vec3 t = frame.t;
     const Vec3 ta = pose_a.to_local_direction(translation_a);
     const Vec3 tb = pose_a.to_local_direction(translation_b);
     const Vec3 r = pose_a.to_local_direction(translation_b - translation_a);
@@ -410,15 +412,8 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
                              first_direction(r, t), tolerance, max_iterations, policy);
         });
     });
-    CastResult out;
-    out.iterations = l.iterations;
-    out.termination = l.termination;
-    out.hit = l.hit;
-    if (!l.hit) {
-        out.toi = 1;
-        return out;
-    }
-    out.toi = l.lambda;
+    CastResult out = result_head(l);
+    if (!l.hit) return out;
     // Overlap at the start: -r, or from A's origin toward B's, or world +z.
     const Vec3 fallback = normalized_or(-r, normalized_or(t, pose_a.to_local_direction({0, 0, 1})));
     const Vec3 n = contact_normal(l, margin, fallback);

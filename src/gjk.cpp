@@ -179,10 +179,9 @@ bool intersect_loop(const Pair& pair, double margin, Vec3& io_v, uint32_t max_it
 template <class Fn>
 auto with_pair(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Fn&& fn) {
     const CoreOf ca = classify(a), cb = classify(b);
-    // B's frame in A's: x -> Ra^T Rb x + Ra^T (tb - ta). The translation difference is taken
-    // before rotating, so shapes far from the world origin keep their relative precision.
-    const Mat3 r = transpose_mul(pose_a.rotation, pose_b.rotation);
-    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    const RelativeFrame frame = relative_frame(pose_a, pose_b);
+    const Mat3& r = frame.r;
+    const Vec3 t = frame.t;
     const double margin = ca.radius + cb.radius;
     return with_support(a, ca.core, [&](auto sa) {
         return with_support(b, cb.core, [&](auto sb) {

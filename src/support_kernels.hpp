@@ -55,6 +55,17 @@ struct GenericSupport {
 };
 
 
+// B's local frame in A's: x -> r x + t, with r = Ra^T Rb and t = Ra^T (tb - ta). The translation
+// difference is taken before rotating, so shapes far from the world origin keep their relative
+// precision. (GJK and the shape cast both start here.)
+struct RelativeFrame {
+    Mat3 r;
+    Vec3 t;
+};
+inline RelativeFrame relative_frame(const Pose& pose_a, const Pose& pose_b) {
+    return {transpose_mul(pose_a.rotation, pose_b.rotation), pose_a.to_local_direction(pose_b.translation - pose_a.translation)};
+}
+
 // Support of A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
 template <class SA, class SB>
 struct PairSupport {
