@@ -1123,7 +1123,13 @@ void RegionSap::rekey_all() {
         const Record& r = records_[id];
         const Aabb k = moving_flag_[id] ? union_box(r.box, r.box_end) : r.box;
         Member& m = members_[id];
-        if (m.keyed.min == k.min && m.keyed.max == k.max) continue;
+        if (m.keyed.min == k.min && m.keyed.max == k.max) {
+            // Same key (a move back to where the last step swept from, or a still object): the
+            // entries stand, but a mover's columns must still be swept, and on_step groups the
+            // movers only over queued columns.
+            if (moving_flag_[id] && !m.large) for_columns(id, [&](uint32_t c) { queue(c); });
+            continue;
+        }
         const int32_t y0 = cell(k.min.y), y1 = cell(k.max.y), z0 = cell(k.min.z), z1 = cell(k.max.z);
         const bool large = (int64_t{y1} - y0 + 1) * (int64_t{z1} - z0 + 1) > kMaxColumns;
         if (large || m.large) {

@@ -1,8 +1,10 @@
 // The world through the C API (the shared library only): step, contacts, overlaps, stats, ids.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "kairos/kairos.h"
@@ -152,6 +154,114 @@ TEST_F(WorldFixture, SameSceneTwiceIsBitIdentical) {
     ASSERT_GT(first.size(), 20u);
     EXPECT_EQ(std::memcmp(first.data(), second.data(), first.size() * sizeof(kairos_contact)), 0);
     for (size_t i = 1; i < first.size(); ++i) EXPECT_LT(first[i].a, first[i].b);
+}
+
+// Overlaps of the last step as sorted (a, b) pairs.
+std::vector<std::pair<kairos_object_id, kairos_object_id>> overlap_pairs(const kairos_world* w) {
+    const kairos_object_id* ids = nullptr;
+    size_t n = 0;
+    EXPECT_EQ(kairos_world_overlaps(w, &ids, &n), KAIROS_OK);
+    std::vector<std::pair<kairos_object_id, kairos_object_id>> out;
+    for (size_t i = 0; i < n; ++i) out.push_back({ids[2 * i], ids[2 * i + 1]});
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Regression (issue 11, finding 1): a mover whose swept box equals the one of its last step
+// (back where it came from) kept its entries, its columns were not queued for the sweep, and the
+// grouping of movers per column wrote past its array (ASan: heap-buffer-overflow in on_step).
+TEST_F(WorldFixture, MoveBackToTheLastSweptBoxIsSafeAndFindsThePair) {
+    kairos_shape* box = nullptr;
+    ASSERT_EQ(kairos_shape_box({0.5, 0.3, 0.2}, &box), KAIROS_OK);
+    const kairos_pose first{{-2.9765621423666744, -2.5781185626001375, -3},
+                            {0.46882472323217533, 0.5836181428458358, 0.46882472323217533, 0.46882472323217533}};
+    const kairos_pose second{{17.023437857633326, 17.421881437399861, 17},
+                             {0.1435354361485609, -3.7194982158217247e-05, -0.8125243852462587, 0.56497938065593589}};
+    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE}) {
+        SCOPED_TRACE(bp);
+        kairos_world_settings s;
+        kairos_world_settings_init(&s);
+        s.broad_phase = bp;
+        kairos_world* w = nullptr;
+        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        kairos_object_id a = 0, b = 0;
+        kairos_pose p = at(-3, -3, -2.9296864271000227);
+        ASSERT_EQ(kairos_world_add(w, box, &p, 1, &a), KAIROS_OK);
+        p = at(0, 0, 0);
+        ASSERT_EQ(kairos_world_add(w, box, &p, 2, &b), KAIROS_OK);
+        ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+        for (const kairos_pose* target : {&first, &second, &first}) {
+            ASSERT_EQ(kairos_world_move(w, a, target), KAIROS_OK);
+            ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+        }
+        // The last sweep, from `second` back to `first`, passes through B at the origin.
+        EXPECT_EQ(overlap_pairs(w), (std::vector<std::pair<kairos_object_id, kairos_object_id>>{{a, b}}));
+        kairos_world_destroy(w);
+    }
+    kairos_shape_release(box);
+}
+
+// Objects shuttling between two poses, so every other step repeats a swept box, among still
+// ones: each step's overlaps and contacts equal brute force's (seeded; the scene must produce
+// pairs).
+TEST_F(WorldFixture, ShuttlingObjectsMatchBruteForce) {
+    const uint64_t seed = 20261126;
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    uint64_t state = seed;
+    auto uniform = [&](double lo, double hi) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53;
+    };
+    constexpr int kObjects = 60, kSteps = 12;
+    std::vector<kairos_pose> from(kObjects), to(kObjects);
+    for (int i = 0; i < kObjects; ++i) {
+        from[i] = at(uniform(-6, 6), uniform(-6, 6), uniform(-6, 6));
+        to[i] = at(from[i].position.x + uniform(-3, 3), from[i].position.y + uniform(-3, 3), from[i].position.z + uniform(-3, 3));
+        const double h = std::sqrt(0.5);
+        if (i % 3 == 0) to[i].orientation = {0, 0, h, h};
+    }
+    std::vector<kairos_world*> worlds;
+    std::vector<std::vector<kairos_object_id>> ids(2);
+    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE}) {
+        kairos_world_settings s;
+        kairos_world_settings_init(&s);
+        s.broad_phase = bp;
+        kairos_world* w = nullptr;
+        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        for (int i = 0; i < kObjects; ++i) {
+            kairos_object_id id = 0;
+            ASSERT_EQ(kairos_world_add(w, i % 2 ? cube : bullet, &from[i], 0, &id), KAIROS_OK);
+            ids[worlds.size()].push_back(id);
+        }
+        worlds.push_back(w);
+    }
+    size_t pairs_seen = 0;
+    for (int step = 0; step < kSteps; ++step) {
+        for (size_t k = 0; k < worlds.size(); ++k) {
+            for (int i = 0; i < kObjects; ++i) {
+                if (i % 4 == 3) continue;  // a quarter stays still
+                const kairos_pose& target = step % 2 == 0 ? to[i] : from[i];
+                ASSERT_EQ(kairos_world_move(worlds[k], ids[k][i], &target), KAIROS_OK);
+            }
+            ASSERT_EQ(kairos_world_step(worlds[k]), KAIROS_OK);
+        }
+        const auto sap = overlap_pairs(worlds[0]), brute = overlap_pairs(worlds[1]);
+        EXPECT_EQ(sap, brute) << "step " << step;
+        pairs_seen += brute.size();
+        const kairos_contact *ca = nullptr, *cb = nullptr;
+        size_t na = 0, nb = 0;
+        ASSERT_EQ(kairos_world_contacts(worlds[0], &ca, &na), KAIROS_OK);
+        ASSERT_EQ(kairos_world_contacts(worlds[1], &cb, &nb), KAIROS_OK);
+        ASSERT_EQ(na, nb) << "step " << step;
+        for (size_t i = 0; i < na; ++i) {
+            EXPECT_EQ(ca[i].a, cb[i].a);
+            EXPECT_EQ(ca[i].b, cb[i].b);
+            EXPECT_EQ(ca[i].toi, cb[i].toi);
+        }
+    }
+    EXPECT_GT(pairs_seen, 20u);
+    EXPECT_LT(pairs_seen, 20u * kSteps * kObjects);
+    for (kairos_world* w : worlds) kairos_world_destroy(w);
 }
 
 }  // namespace
