@@ -42,11 +42,40 @@ Vec3 read_vec3(const kairos_vec3& v, const char* function, const char* name) {
     return {v.x, v.y, v.z};
 }
 
+Vec3 read_point(const kairos_vec3& v, const char* function, const char* name) {
+    const Vec3 p = read_vec3(v, function, name);
+    const double c[3] = {p.x, p.y, p.z};
+    static const char* const axis[3] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i)
+        if (std::fabs(c[i]) > KAIROS_MAX_MAGNITUDE)
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s.%s is %g, beyond KAIROS_MAX_MAGNITUDE (%g)", name, axis[i], c[i],
+                 KAIROS_MAX_MAGNITUDE);
+    return p;
+}
+
+void require_extent(const Shape* s, const char* function, const char* what) {
+    Vec3 lo, hi;
+    bounds(*s, make_pose({}, Quat{0, 0, 0, 1}), lo, hi);
+    const double extent = std::fmax(max_abs(lo), max_abs(hi));
+    if (!(extent <= KAIROS_MAX_MAGNITUDE)) {  // negated: NaN fails too
+        s->release();
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s reaches %g from its origin, beyond KAIROS_MAX_MAGNITUDE (%g)", what,
+             extent, KAIROS_MAX_MAGNITUDE);
+    }
+}
+
+void require_finite_result(bool finite, const char* function) {
+    if (!finite)
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function,
+             "the inputs together exceed the range double precision resolves (shape sizes and positions near "
+             "KAIROS_MAX_MAGNITUDE): no finite result");
+}
+
 BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name) {
     if (pose == nullptr) return {};
     char field[96];
     std::snprintf(field, sizeof field, "%s.position", name);
-    const Vec3 position = read_vec3(pose->position, function, field);
+    const Vec3 position = read_point(pose->position, function, field);
     const kairos_quat& q = pose->orientation;
     const double c[4] = {q.x, q.y, q.z, q.w};
     static const char* const part[4] = {"x", "y", "z", "w"};

@@ -59,15 +59,26 @@ inline double require_finite(double v, const char* function, const char* name) {
     return v;
 }
 
-// Finite and > 0 (or >= 0 when `allow_zero`).
+// Finite and > 0 (or >= 0 when `allow_zero`), and at most KAIROS_MAX_MAGNITUDE.
 inline double require_size(double v, const char* function, const char* name, bool allow_zero = false) {
     require_finite(v, function, name);
     if (allow_zero ? !(v >= 0) : !(v > 0))
         fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s must be %s (got %.17g)", name, allow_zero ? ">= 0" : "> 0", v);
+    if (v > KAIROS_MAX_MAGNITUDE)
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s is %g, beyond KAIROS_MAX_MAGNITUDE (%g)", name, v, KAIROS_MAX_MAGNITUDE);
     return v;
 }
 
+// A vector of any finite length (a direction).
 Vec3 read_vec3(const kairos_vec3& v, const char* function, const char* name);
+// A position, translation or length vector: finite, each coordinate within KAIROS_MAX_MAGNITUDE.
+Vec3 read_point(const kairos_vec3& v, const char* function, const char* name);
+// A new shape whose local extent goes beyond KAIROS_MAX_MAGNITUDE (a composite of large parts)
+// is refused; `s` is released first, so the caller's reference does not leak.
+void require_extent(const Shape* s, const char* function, const char* what);
+// Results must be finite: the input limits make them so; this is the last guard, before any
+// output is written.
+void require_finite_result(bool finite, const char* function);
 
 // A pose: finite position, finite quaternion of unit length within KAIROS_QUAT_TOLERANCE
 // (normalised). NULL means identity.

@@ -33,6 +33,12 @@ kairos_cast_result to_c(const CastResult& r) {
     return c;
 }
 
+// The C layout of a cast result whose numbers are all finite (the last guard, see boundary.hpp).
+kairos_cast_result checked(const CastResult& r, const char* fn) {
+    require_finite_result(std::isfinite(r.toi) && is_finite(r.point) && is_finite(r.normal), fn);
+    return to_c(r);
+}
+
 }  // namespace
 
 extern "C" {
@@ -57,6 +63,7 @@ KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pos
         require_pointer(out, fn, "out");
         const DistanceResult r =
             gjk_distance(shape_of(a), pa.rigid(), shape_of(b), pb.rigid(), qs.tolerance, qs.max_iterations);
+        require_finite_result(std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
         kairos_distance_result res;
         res.distance = r.distance;
         res.point_a = to_c(r.point_a);
@@ -95,11 +102,11 @@ KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pos
     return guarded(fn, [&] {
         require_pointer(s, fn, "s");
         const BodyPose p = read_pose(pose, fn, "pose");
-        const Vec3 o = read_vec3(origin, fn, "origin");
-        const Vec3 t = read_vec3(translation, fn, "translation");
+        const Vec3 o = read_point(origin, fn, "origin");
+        const Vec3 t = read_point(translation, fn, "translation");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        *out = to_c(kairos::ray_cast(shape_of(s), p.rigid(), o, t, qs.tolerance, qs.max_iterations));
+        *out = checked(kairos::ray_cast(shape_of(s), p.rigid(), o, t, qs.tolerance, qs.max_iterations), fn);
     });
 }
 
@@ -110,14 +117,15 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
     return guarded(fn, [&] {
         require_pointer(a, fn, "a");
         const BodyPose pa = read_pose(pose_a, fn, "pose_a");
-        const Vec3 ta = read_vec3(translation_a, fn, "translation_a");
+        const Vec3 ta = read_point(translation_a, fn, "translation_a");
         require_pointer(b, fn, "b");
         const BodyPose pb = read_pose(pose_b, fn, "pose_b");
-        const Vec3 tb = read_vec3(translation_b, fn, "translation_b");
+        const Vec3 tb = read_point(translation_b, fn, "translation_b");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        *out = to_c(kairos::shape_cast(shape_of(a), pa.rigid(), ta, shape_of(b), pb.rigid(), tb, qs.tolerance,
-                                       qs.max_iterations));
+        *out = checked(kairos::shape_cast(shape_of(a), pa.rigid(), ta, shape_of(b), pb.rigid(), tb, qs.tolerance,
+                                          qs.max_iterations),
+                       fn);
     });
 }
 
@@ -138,7 +146,7 @@ KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion
         require_pointer(out, fn, "out");
         const Motion ma(BodyState{a0.position, a0.orientation}, BodyState{a1.position, a1.orientation});
         const Motion mb(BodyState{b0.position, b0.orientation}, BodyState{b1.position, b1.orientation});
-        *out = to_c(kairos::motion_cast(shape_of(a), ma, shape_of(b), mb, qs.tolerance, qs.max_iterations));
+        *out = checked(kairos::motion_cast(shape_of(a), ma, shape_of(b), mb, qs.tolerance, qs.max_iterations), fn);
     });
 }
 

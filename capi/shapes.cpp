@@ -89,31 +89,30 @@ KAIROS_API int32_t kairos_shape_convex_hull(const kairos_vec3* points, size_t co
         require_pointer(out, fn, "out");
         if (count > UINT32_MAX)
             fail(KAIROS_ERROR_LIMIT, fn, "count %zu exceeds the limit of %u points", count, UINT32_MAX);
-        if (count < 4)
-            fail(KAIROS_ERROR_DEGENERATE, fn, "count is %zu: a solid hull needs at least 4 points", count);
+        if (count == 0) fail(KAIROS_ERROR_DEGENERATE, fn, "count is 0: the hull of no points is no shape");
         char name[64];
-        for (size_t i = 0; i < count; ++i) {
-            if (!is_finite({points[i].x, points[i].y, points[i].z})) {
-                std::snprintf(name, sizeof name, "points[%zu]", i);
-                read_vec3(points[i], fn, name);  // names the bad coordinate and throws
-            }
-        }
-        // kairos_vec3 and Vec3 are both three doubles; copy rather than alias across types.
         std::vector<Vec3> local(count);
-        for (size_t i = 0; i < count; ++i) local[i] = {points[i].x, points[i].y, points[i].z};
-        ConvexHullShape* hull = nullptr;
-        switch (make_convex_hull(local.data(), count, &hull)) {
-            case HullStatus::Ok: break;
-            case HullStatus::TooFewPoints:
-                fail(KAIROS_ERROR_DEGENERATE, fn, "points: fewer than 4 distinct points (count %zu)", count);
-            case HullStatus::Collinear:
-                fail(KAIROS_ERROR_DEGENERATE, fn, "points: all %zu points are collinear (relative to their extent)", count);
-            case HullStatus::Coplanar:
-                fail(KAIROS_ERROR_DEGENERATE, fn, "points: all %zu points are coplanar (relative to their extent)", count);
-            case HullStatus::NonFinite:
-                fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "points: a coordinate is not finite");
+        for (size_t i = 0; i < count; ++i) {
+            std::snprintf(name, sizeof name, "points[%zu]", i);
+            local[i] = read_point(points[i], fn, name);  // names a bad coordinate and throws
         }
+        ConvexHullShape* hull = nullptr;
+        if (make_convex_hull(local.data(), count, &hull) != HullStatus::Ok)
+            fail(KAIROS_ERROR_INTERNAL, fn, "points: the checked set was refused by the hull builder");
         publish(hull, out);
+    });
+}
+
+KAIROS_API int32_t kairos_shape_triangle(kairos_vec3 a, kairos_vec3 b, kairos_vec3 c, kairos_shape** out) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        const Vec3 pa = read_point(a, fn, "a"), pb = read_point(b, fn, "b"), pc = read_point(c, fn, "c");
+        require_pointer(out, fn, "out");
+        ConvexHullShape* tri = nullptr;
+        if (make_triangle(pa, pb, pc, &tri) != HullStatus::Ok)
+            fail(KAIROS_ERROR_DEGENERATE, fn,
+                 "a, b, c are collinear or coincide (relative to the longest side): a triangle needs three corners");
+        publish(tri, out);
     });
 }
 
@@ -123,7 +122,9 @@ KAIROS_API int32_t kairos_shape_minkowski_sum(const kairos_shape* a, const kairo
         require_pointer(a, fn, "a");
         require_pointer(b, fn, "b");
         require_pointer(out, fn, "out");
-        publish(new MinkowskiSumShape(shape_of(a), shape_of(b)), out);
+        const Shape* sum = new MinkowskiSumShape(shape_of(a), shape_of(b));
+        require_extent(sum, fn, "a + b");
+        publish(sum, out);
     });
 }
 
@@ -133,7 +134,9 @@ KAIROS_API int32_t kairos_shape_hull(const kairos_shape* a, const kairos_shape* 
         require_pointer(a, fn, "a");
         require_pointer(b, fn, "b");
         require_pointer(out, fn, "out");
-        publish(new HullOfTwoShape(shape_of(a), shape_of(b)), out);
+        const Shape* both = new HullOfTwoShape(shape_of(a), shape_of(b));
+        require_extent(both, fn, "the hull of a and b");
+        publish(both, out);
     });
 }
 
@@ -148,7 +151,7 @@ KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double 
             std::snprintf(name, sizeof name, "linear[%d]", i);
             require_finite(linear[i], fn, name);
         }
-        const Vec3 t = read_vec3(translation, fn, "translation");
+        const Vec3 t = read_point(translation, fn, "translation");
         require_pointer(out, fn, "out");
         Mat3 m;
         for (int i = 0; i < 3; ++i) m.r[i] = {linear[3 * i], linear[3 * i + 1], linear[3 * i + 2]};
@@ -159,7 +162,9 @@ KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double 
         if (!(std::fabs(det) > 1e-12 * bound))
             fail(KAIROS_ERROR_INVALID_ARGUMENT, fn,
                  "linear is singular or nearly so (det %g, product of row lengths %g)", det, bound);
-        publish(new TransformedShape(shape_of(s), m, t), out);
+        const Shape* mapped = new TransformedShape(shape_of(s), m, t);
+        require_extent(mapped, fn, "the transformed shape");
+        publish(mapped, out);
     });
 }
 
@@ -177,7 +182,9 @@ KAIROS_API int32_t kairos_shape_support(const kairos_shape* s, kairos_vec3 direc
         require_pointer(s, fn, "s");
         const Vec3 d = read_vec3(direction, fn, "direction");
         require_pointer(out, fn, "out");
-        *out = to_c(support(shape_of(s), d));
+        const Vec3 p = support(shape_of(s), d);
+        require_finite_result(is_finite(p), fn);
+        *out = to_c(p);
     });
 }
 

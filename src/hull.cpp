@@ -534,7 +534,8 @@ void select_vertices(const std::vector<Vec3>& p, const std::vector<Face>& faces,
             do {
                 const Face& f = faces[fi];
                 int c = 0;
-                while (f.v[c] != i) ++c;
+                while (c < 3 && f.v[c] != i) ++c;
+                if (c == 3) throw std::logic_error("kairos: hull mesh is not closed around a point");
                 const uint32_t next = f.v[(c + 2) % 3];  // f holds next -> i; the face across follows
                 const Face& g = faces[f.adj[(c + 2) % 3]];
                 bool exact = false, by_thin = false;
@@ -570,8 +571,98 @@ void select_vertices(const std::vector<Vec3>& p, const std::vector<Face>& faces,
 
 }  // namespace
 
+namespace {
+
+// Vertices of the flat convex polygon of the points `ids` (within `thin` of a plane spanned by the
+// unit, orthogonal u and w through `origin`), in order around it: Andrew's monotone chain on the
+// coordinates along u and w. A point within `thin` of the segment joining its chain neighbours
+// is not a vertex (the polygon moves by at most thin), which also drops duplicates.
+std::vector<uint32_t> polygon_vertices(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 origin, Vec3 u,
+                                       Vec3 w, double thin) {
+    struct Planar {
+        double x, y;
+        uint32_t id;
+    };
+    std::vector<Planar> q;
+    q.reserve(ids.size());
+    for (uint32_t i : ids) q.push_back({dot(p[i] - origin, u), dot(p[i] - origin, w), i});
+    std::sort(q.begin(), q.end(), [](const Planar& a, const Planar& b) {
+        return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.id < b.id)));
+    });
+    // Whether o -> a -> b turns left with a more than thin from the line o-b (twice the area
+    // over the base length).
+    const auto left_turn = [&](const Planar& o, const Planar& a, const Planar& b) {
+        const double cross = (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+        return cross > thin * std::hypot(b.x - o.x, b.y - o.y);
+    };
+    std::vector<Planar> chain;
+    chain.reserve(2 * q.size());
+    for (int pass = 0; pass < 2; ++pass) {
+        const size_t base = chain.size();
+        for (size_t k = 0; k < q.size(); ++k) {
+            const Planar& x = pass == 0 ? q[k] : q[q.size() - 1 - k];
+            while (chain.size() >= base + 2 && !left_turn(chain[chain.size() - 2], chain.back(), x)) chain.pop_back();
+            chain.push_back(x);
+        }
+        chain.pop_back();  // the last point of each half starts the other
+    }
+    std::vector<uint32_t> out;
+    out.reserve(chain.size());
+    for (const Planar& x : chain) out.push_back(x.id);
+    return out;
+}
+
+// Hull edges of the solid hull of `ids` by quickhull (see the file comment), with the vertices in
+// `hull_vertices`. Throws std::logic_error when the mesh comes out inconsistent.
+void solid_hull(const std::vector<Vec3>& p, std::vector<uint32_t> ids, std::array<uint32_t, 4> tetra, double thin,
+                std::vector<uint32_t>& hull_vertices, std::vector<std::pair<uint32_t, uint32_t>>& edges) {
+    for (int attempt = 0;; ++attempt) {
+        Quickhull qh(p, thin);
+        qh.build(ids, tetra);
+        // Dropping a vertex can leave a neighbour on a flat spot, hence the rounds; exactly flat
+        // spots all go in the first one. The cap is a guard: the last round keeps every vertex.
+        std::vector<uint32_t> kept, all;
+        select_vertices(p, qh.faces(), thin, attempt == 6, kept, all, edges);
+        if (kept.size() == all.size()) {
+            hull_vertices = std::move(kept);
+            return;
+        }
+        // The tetrahedron may have used a dropped point: pick a new one among the kept.
+        const uint32_t a = kept.empty() ? all[0] : kept[0];
+        uint32_t b = a, d = a;
+        for (uint32_t i : kept)
+            if (length_sq(p[i] - p[a]) > length_sq(p[b] - p[a])) b = i;
+        double unused = 0;
+        const uint32_t c = kept.empty() ? a : farthest_from_line(p, kept, p[a], p[b], unused);
+        double best = 0;
+        for (uint32_t i : kept) {
+            const double v = std::fabs(orient(p[a], p[b], p[c], p[i]).value);
+            if (v > best) {
+                best = v;
+                d = i;
+            }
+        }
+        const int side = orient(p[a], p[b], p[c], p[d]).sign;
+        if (side == 0) {
+            // Dropping removes only points within ~thin of the rest, so a set thicker than
+            // kFlatTolerance keeps a tetrahedron; a guard: keep this round's hull whole.
+            hull_vertices = std::move(all);
+            return;
+        }
+        ids = std::move(kept);
+        tetra = {a, b, c, d};
+        if (side > 0) std::swap(tetra[1], tetra[2]);
+    }
+}
+
+// Packs the chosen vertices (indices into `points`) and, for a climbing hull, the edge graph.
+ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<Vec3>& p, const std::vector<uint32_t>& hull_vertices,
+                           const std::vector<std::pair<uint32_t, uint32_t>>& edges, uint8_t dimension);
+
+}  // namespace
+
 HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** out_shape) {
-    if (count < 4) return HullStatus::TooFewPoints;
+    if (count == 0) return HullStatus::Empty;
     for (size_t i = 0; i < count; ++i)
         if (!is_finite(points[i])) return HullStatus::NonFinite;
     if (count >= kNone) throw std::bad_alloc();  // indices are 32-bit
@@ -594,7 +685,13 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     const Vec3 size = hi - lo;
     const int axis = size.x >= size.y ? (size.x >= size.z ? 0 : 2) : (size.y >= size.z ? 1 : 2);
     const double extent = size[axis];
-    if (!(extent > 0)) return HullStatus::Collinear;  // a single point repeated
+    std::vector<uint32_t> hull_vertices;
+    std::vector<std::pair<uint32_t, uint32_t>> edges;  // (smaller, larger) per hull edge
+    if (!(extent > 0)) {  // one point, repeated
+        hull_vertices = {0};
+        *out_shape = pack_hull(points, count, p, hull_vertices, edges, 0);
+        return HullStatus::Ok;
+    }
     const double tolerance = kFlatTolerance * extent;
     // Plus the rounding a caller's transform leaves in coordinates of this magnitude (64 ulps of
     // the largest): a small box far from the origin has faces only that flat.
@@ -611,66 +708,82 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     }
     double line_dist = 0;
     const uint32_t i2 = farthest_from_line(p, ids, p[i0], p[i1], line_dist);
-    if (!(line_dist > tolerance)) return HullStatus::Collinear;
-    const Vec3 normal = normalized_or(cross(p[i1] - p[i0], p[i2] - p[i0]), {0, 0, 1});
+    const Vec3 u = normalized_or(p[i1] - p[i0], {1, 0, 0});
+    if (!(line_dist > tolerance)) {
+        // A segment: the extreme points along the line.
+        uint32_t first = i0, last = i0;
+        for (uint32_t i : ids) {
+            if (dot(p[i] - p[i0], u) < dot(p[first] - p[i0], u)) first = i;
+            if (dot(p[i] - p[i0], u) > dot(p[last] - p[i0], u)) last = i;
+        }
+        hull_vertices = {std::min(first, last), std::max(first, last)};
+        edges = {{hull_vertices[0], hull_vertices[1]}};
+        *out_shape = pack_hull(points, count, p, hull_vertices, edges, 1);
+        return HullStatus::Ok;
+    }
+    // The point farthest from the plane of i0, i1, i2, by the orientation determinant (its
+    // rounding is relative to the points' own products). A plane normal taken from the rounded
+    // cross product would not do: for a nearly collinear triple its direction can be off by
+    // eps / sin(angle), enough to pick a point of the plane itself as the farthest.
+    const double area2 = length(cross(p[i1] - p[i0], p[i2] - p[i0]));
     uint32_t i3 = i0;
-    double plane_dist = -1;
+    double best_det = -1;
     for (uint32_t i : ids) {
-        const double dist = std::fabs(dot(p[i] - p[i0], normal));
-        if (dist > plane_dist) {
-            plane_dist = dist;
+        const double det = std::fabs(orient(p[i0], p[i1], p[i2], p[i]).value);
+        if (det > best_det) {
+            best_det = det;
             i3 = i;
         }
     }
-    if (!(plane_dist > tolerance)) return HullStatus::Coplanar;
-
-    std::array<uint32_t, 4> tetra{i0, i1, i2, i3};
     const int s = orient(p[i0], p[i1], p[i2], p[i3]).sign;
-    if (s > 0) std::swap(tetra[1], tetra[2]);
-    // s == 0 cannot happen: i3 is more than 1e-10 * extent from the plane.
-
-    // Build; drop points on faces or edges; rebuild from the true vertices if any were dropped.
-    std::vector<uint32_t> hull_vertices;
-    std::vector<std::pair<uint32_t, uint32_t>> edges;  // (smaller, larger) per hull edge
-    for (int attempt = 0;; ++attempt) {
-        Quickhull qh(p, thin);
-        qh.build(ids, tetra);
-        // Dropping a vertex can leave a neighbour on a flat spot, hence the rounds; exactly flat
-        // spots all go in the first one. The cap is a guard: the last round keeps every vertex.
-        std::vector<uint32_t> kept, all;
-        select_vertices(p, qh.faces(), thin, attempt == 6, kept, all, edges);
-        if (kept.size() == all.size()) {
-            hull_vertices = std::move(kept);
-            break;
+    if (s == 0 || !(best_det > tolerance * area2)) {
+        // A flat polygon, in the plane through i0 spanned by u and the part of i2 - i0 across u
+        // (well defined: i2 is more than kFlatTolerance * extent from the line).
+        const Vec3 across = p[i2] - p[i0];
+        const Vec3 w = normalized_or(across - dot(across, u) * u, {0, 1, 0});
+        hull_vertices = polygon_vertices(p, ids, p[i0], u, w, thin);
+        for (size_t k = 0; k < hull_vertices.size(); ++k) {
+            const uint32_t a = hull_vertices[k], b = hull_vertices[(k + 1) % hull_vertices.size()];
+            edges.emplace_back(std::min(a, b), std::max(a, b));
         }
-        // The tetrahedron may have used a dropped point: pick a new one among the kept.
-        const uint32_t a = kept.empty() ? all[0] : kept[0];
-        uint32_t b = a, d = a;
-        for (uint32_t i : kept)
-            if (length_sq(p[i] - p[a]) > length_sq(p[b] - p[a])) b = i;
-        double unused = 0;
-        const uint32_t c = kept.empty() ? a : farthest_from_line(p, kept, p[a], p[b], unused);
-        double best = 0;
-        for (uint32_t i : kept) {
-            const double v = std::fabs(orient(p[a], p[b], p[c], p[i]).value);
-            if (v > best) {
-                best = v;
-                d = i;
-            }
-        }
-        const int side = orient(p[a], p[b], p[c], p[d]).sign;
-        if (side == 0) {
-            // Cannot happen to a set thicker than kFlatTolerance (dropping only removes points
-            // within ~kThinTolerance of the rest); a guard: keep this round's hull whole.
-            hull_vertices = std::move(all);
-            break;
-        }
-        ids = std::move(kept);
-        tetra = {a, b, c, d};
-        if (side > 0) std::swap(tetra[1], tetra[2]);
+        *out_shape = pack_hull(points, count, p, hull_vertices, edges, 2);
+        return HullStatus::Ok;
     }
+    std::array<uint32_t, 4> tetra{i0, i1, i2, i3};
+    if (s > 0) std::swap(tetra[1], tetra[2]);
+    try {
+        solid_hull(p, std::move(ids), tetra, thin, hull_vertices, edges);
+    } catch (const std::logic_error&) {
+        // A guard for a mesh that rounding left inconsistent (none known): every input point,
+        // with no edge graph, still gives the exact support.
+        hull_vertices.resize(count);
+        for (size_t i = 0; i < count; ++i) hull_vertices[i] = static_cast<uint32_t>(i);
+        edges.clear();
+        *out_shape = pack_hull(points, count, p, hull_vertices, edges, 3);
+        (*out_shape)->neighbor_offsets.clear();
+        (*out_shape)->neighbors.clear();
+        return HullStatus::Ok;
+    }
+    *out_shape = pack_hull(points, count, p, hull_vertices, edges, 3);
+    return HullStatus::Ok;
+}
 
-    // Vertex order: input order; a climbing hull puts its seeds first (then input order).
+HullStatus make_triangle(Vec3 a, Vec3 b, Vec3 c, ConvexHullShape** out_shape) {
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) return HullStatus::NonFinite;
+    const Vec3 pts[3] = {a, b, c};
+    ConvexHullShape* hull = nullptr;
+    make_convex_hull(pts, 3, &hull);
+    std::unique_ptr<ConvexHullShape, void (*)(ConvexHullShape*)> owned(hull, [](ConvexHullShape* h) { h->release(); });
+    if (hull->dimension != 2 || hull->vertices.size() != 3) return HullStatus::Collinear;
+    *out_shape = owned.release();
+    return HullStatus::Ok;
+}
+
+namespace {
+
+ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<Vec3>& p, const std::vector<uint32_t>& hull_vertices,
+                           const std::vector<std::pair<uint32_t, uint32_t>>& edges, uint8_t dimension) {
+// Vertex order: input order; a climbing hull puts its seeds first (then input order).
     const bool climbs = hull_vertices.size() > ConvexHullShape::kHillClimbThreshold;
     std::vector<uint32_t> order;
     order.reserve(hull_vertices.size());
@@ -692,6 +805,7 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
         if (!placed[i]) order.push_back(i);
 
     auto shape = std::make_unique<ConvexHullShape>();
+    shape->dimension = dimension;
     shape->vertices.reserve(order.size());
     std::vector<uint32_t> index_of(count, kNone);
     for (uint32_t i : order) {
@@ -717,8 +831,9 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
         }
         for (size_t i = 0; i < nv; ++i) std::sort(adjacent.begin() + offsets[i], adjacent.begin() + offsets[i + 1]);
     }
-    *out_shape = shape.release();
-    return HullStatus::Ok;
+    return shape.release();
 }
+
+}  // namespace
 
 }  // namespace kairos

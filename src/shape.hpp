@@ -83,10 +83,14 @@ struct ConeShape final : Shape {
 // A convex polytope by its vertices only. `neighbors` lists, for vertex i, the indices
 // neighbors[neighbor_offsets[i] .. neighbor_offsets[i+1]) joined to it by a hull edge; it is
 // filled only when the hull has more than kHillClimbThreshold vertices (support then climbs).
+//
+// Flat and lower-dimensional sets are hulls too: `dimension` is 3 for a solid, 2 for a flat
+// convex polygon (vertices in order around it), 1 for a segment (2 vertices), 0 for a point.
 struct ConvexHullShape final : Shape {
     static constexpr size_t kHillClimbThreshold = 32;
     ConvexHullShape() : Shape(ShapeKind::ConvexHull) {}
     std::vector<Vec3> vertices;
+    uint8_t dimension = 3;
     std::vector<uint32_t> neighbor_offsets;
     std::vector<uint32_t> neighbors;
     Vec3 support(Vec3 d) const;  // in hull.cpp
@@ -206,9 +210,14 @@ inline Vec3 support(const Shape& s, const Pose& pose, Vec3 world_direction) {
 void bounds(const Shape& s, const Pose& pose, Vec3& out_min, Vec3& out_max);
 
 // Convex hull construction (hull.cpp).
-enum class HullStatus { Ok, TooFewPoints, Collinear, Coplanar, NonFinite };
-// Builds the hull of `count` finite points. On Ok, *out_shape holds a new shape (one reference).
-// Throws std::bad_alloc on allocation failure.
+enum class HullStatus { Ok, Empty, NonFinite, Collinear };
+// Builds the hull of `count` points: Ok for every non-empty set of finite points, whatever its
+// dimension (see ConvexHullShape::dimension; "flat" is relative to the set's extent, as the
+// file comment of hull.cpp says). Empty for count 0, NonFinite for a NaN or infinite coordinate.
+// On Ok, *out_shape holds a new shape (one reference). Throws std::bad_alloc on allocation failure.
 HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** out_shape);
+// The triangle a, b, c (a flat hull of three vertices). Collinear when c lies within 1e-10 of
+// the longest side's length from the line of that side (or two points coincide); NonFinite as above.
+HullStatus make_triangle(Vec3 a, Vec3 b, Vec3 c, ConvexHullShape** out_shape);
 
 }  // namespace kairos

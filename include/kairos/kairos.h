@@ -17,6 +17,13 @@
  *
  * Numbers. Every double given to the library must be finite (no NaN, no infinity); a
  * quaternion must have unit length within KAIROS_QUAT_TOLERANCE (it is then normalised).
+ * Magnitudes: every coordinate, length and size given (positions, translations, ray origins,
+ * radii, half extents, hull points, transform translations) must lie within
+ * +-KAIROS_MAX_MAGNITUDE (1e100), and so must every shape's extent in its local frame (a
+ * transformed shape, Minkowski sum or hull whose points reach beyond it is refused). Beyond that
+ * squared lengths would overflow; such input gets KAIROS_ERROR_INVALID_ARGUMENT naming it, so a
+ * successful call never returns NaN or infinity. Directions (kairos_shape_support) may have any
+ * finite length.
  *
  * Extensible input structs (kairos_query_settings, kairos_world_settings, kairos_step_stats)
  * start with uint32_t struct_size and are passed by pointer only. Fill them with their
@@ -75,7 +82,7 @@ extern "C" {
 #define KAIROS_ERROR_NULL_ARGUMENT        -1  /* a required pointer was NULL */
 #define KAIROS_ERROR_INVALID_ARGUMENT     -2  /* NaN or infinite number, size <= 0, non-unit quaternion, singular matrix, unknown enum value */
 #define KAIROS_ERROR_STRUCT_SIZE          -3  /* struct_size too small, or a larger struct with a non-zero unknown tail */
-#define KAIROS_ERROR_DEGENERATE           -4  /* a point set with no volume: fewer than 4 points, or all collinear or coplanar */
+#define KAIROS_ERROR_DEGENERATE           -4  /* input that names no shape: an empty point set, a triangle of collinear points */
 #define KAIROS_ERROR_STALE_ID             -5  /* an object id that is 0, unknown, or of a removed object */
 #define KAIROS_ERROR_OUT_OF_MEMORY        -6  /* an allocation failed; nothing was changed */
 #define KAIROS_ERROR_NOT_IMPLEMENTED      -7  /* declared in the contract, not yet built in this version */
@@ -103,9 +110,11 @@ extern "C" {
 
 /* How far a quaternion's length may differ from 1 before it is rejected. */
 #define KAIROS_QUAT_TOLERANCE 1e-6
+/* The largest magnitude of a coordinate, length or size the library accepts (see "Numbers"). */
+#define KAIROS_MAX_MAGNITUDE 1e100
 
 /* Version of the function table returned by kairos_get_api. */
-#define KAIROS_ABI_VERSION 1u
+#define KAIROS_ABI_VERSION 2u
 
 /* ---------------------------------------------------------------------------------------------
  * Plain types. All are C structs of doubles with no padding surprises; layouts are frozen.
@@ -168,10 +177,16 @@ KAIROS_API int32_t kairos_shape_point(kairos_shape** out);
 /* The segment from (0,0,-half_length) to (0,0,+half_length). */
 KAIROS_API int32_t kairos_shape_segment(double half_length, kairos_shape** out);
 /* Convex hull of count points (local frame, never recentred). The points are copied; only the
- * hull's vertices are kept (interior and duplicate points are dropped). Needs a solid: fewer than
- * 4 points, or points all collinear or coplanar relative to the set's extent, give
- * KAIROS_ERROR_DEGENERATE. points may be NULL only when count is 0 (which is degenerate). */
+ * hull's vertices are kept (interior and duplicate points are dropped). Every non-empty set of
+ * finite points gives a shape, of the set's own dimension: points all within 1e-10 of the set's
+ * extent (the widest side of its bounding box) of a plane give a flat convex polygon, of a line a
+ * segment, and one distinct point (repeated or not) a point. Flat shapes work in every query and
+ * in worlds like solids. count 0 is KAIROS_ERROR_DEGENERATE; points may be NULL only then. */
 KAIROS_API int32_t kairos_shape_convex_hull(const kairos_vec3* points, size_t count, kairos_shape** out);
+/* The flat triangle a, b, c (local frame, as given): a floor or terrain piece, a thin plate.
+ * Collinear points (c within 1e-10 of the longest side's length from that side's line) or
+ * coinciding ones give KAIROS_ERROR_DEGENERATE. */
+KAIROS_API int32_t kairos_shape_triangle(kairos_vec3 a, kairos_vec3 b, kairos_vec3 c, kairos_shape** out);
 /* Minkowski sum a + b = {x + y}: e.g. a rounded box as box + sphere. Retains a and b. */
 KAIROS_API int32_t kairos_shape_minkowski_sum(const kairos_shape* a, const kairos_shape* b, kairos_shape** out);
 /* Convex hull of the union of a and b (both in the same local frame). Retains a and b. */
@@ -395,6 +410,8 @@ typedef struct kairos_api {
     int32_t (*world_overlaps)(const kairos_world*, const kairos_object_id**, size_t*);
     void    (*step_stats_init)(kairos_step_stats*);
     int32_t (*world_step_stats)(const kairos_world*, kairos_step_stats*);
+    /* ABI version 2 (Kairos 0.2) */
+    int32_t (*shape_triangle)(kairos_vec3, kairos_vec3, kairos_vec3, kairos_shape**);
 } kairos_api;
 
 /* The function table for abi_version (1 <= abi_version <= KAIROS_ABI_VERSION of the library).

@@ -213,13 +213,12 @@ static void test_bad_input(void) {
     CHECK(error_mentions("half_length"));
     CHECK(out == sentinel);
 
-    /* Coplanar points have no volume. */
+    /* No points name no shape; collinear corners name no triangle. */
     flat[0] = vec3(0, 0, 0);
     flat[1] = vec3(1, 0, 0);
-    flat[2] = vec3(0, 1, 0);
-    flat[3] = vec3(1, 1, 0);
-    CHECK_STATUS(kairos_shape_convex_hull(flat, 4, &out), KAIROS_ERROR_DEGENERATE);
-    CHECK_STATUS(kairos_shape_convex_hull(flat, 3, &out), KAIROS_ERROR_DEGENERATE);
+    flat[2] = vec3(2, 0, 0);
+    CHECK_STATUS(kairos_shape_triangle(flat[0], flat[1], flat[2], &out), KAIROS_ERROR_DEGENERATE);
+    CHECK(error_mentions("collinear"));
     CHECK_STATUS(kairos_shape_convex_hull(NULL, 0, &out), KAIROS_ERROR_DEGENERATE);
     CHECK_STATUS(kairos_shape_convex_hull(NULL, 5, &out), KAIROS_ERROR_NULL_ARGUMENT);
     CHECK(out == sentinel);

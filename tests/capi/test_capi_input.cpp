@@ -164,20 +164,31 @@ TEST(ShapeInput, ConvexHullPoints) {
     EXPECT_TRUE(Rejected(kairos_shape_convex_hull(nullptr, 4, &s), KAIROS_ERROR_NULL_ARGUMENT, "points"));
     EXPECT_TRUE(Rejected(kairos_shape_convex_hull(tetra, 4, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
     EXPECT_TRUE(Rejected(kairos_shape_convex_hull(nullptr, 0, &s), KAIROS_ERROR_DEGENERATE, "count"));
-    EXPECT_TRUE(Rejected(kairos_shape_convex_hull(tetra, 3, &s), KAIROS_ERROR_DEGENERATE, "count"));
+    EXPECT_TRUE(Rejected(kairos_shape_convex_hull(tetra, 0, &s), KAIROS_ERROR_DEGENERATE, "count"));
     kairos_vec3 bad[5] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
     bad[2].y = kNaN;
     EXPECT_TRUE(Rejected(kairos_shape_convex_hull(bad, 5, &s), KAIROS_ERROR_INVALID_ARGUMENT, "points[2].y"));
     bad[2].y = 1;
     bad[4].z = -kInf;
     EXPECT_TRUE(Rejected(kairos_shape_convex_hull(bad, 5, &s), KAIROS_ERROR_INVALID_ARGUMENT, "points[4].z"));
-    const kairos_vec3 line[5] = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}, {-1, -1, -1}};
-    EXPECT_TRUE(Rejected(kairos_shape_convex_hull(line, 5, &s), KAIROS_ERROR_DEGENERATE, "points"));
-    const kairos_vec3 plane[6] = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {1, 1, 5}, {0.5, 0.2, 5}, {3, -2, 5}};
-    EXPECT_TRUE(Rejected(kairos_shape_convex_hull(plane, 6, &s), KAIROS_ERROR_DEGENERATE, "points"));
-    const kairos_vec3 same[5] = {{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}};
-    EXPECT_TRUE(Rejected(kairos_shape_convex_hull(same, 5, &s), KAIROS_ERROR_DEGENERATE, "points"));
+    bad[4].z = 2e100;  // finite, beyond KAIROS_MAX_MAGNITUDE
+    EXPECT_TRUE(Rejected(kairos_shape_convex_hull(bad, 5, &s), KAIROS_ERROR_INVALID_ARGUMENT, "points[4].z"));
     EXPECT_EQ(s, kSentinel);
+}
+
+TEST(ShapeInput, TriangleCorners) {
+    kairos_shape* s = kSentinel;
+    const kairos_vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+    EXPECT_TRUE(Rejected(kairos_shape_triangle(a, b, c, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+    EXPECT_TRUE(Rejected(kairos_shape_triangle(a, {kNaN, 0, 0}, c, &s), KAIROS_ERROR_INVALID_ARGUMENT, "b.x"));
+    EXPECT_TRUE(Rejected(kairos_shape_triangle(a, b, {0, 0, -kInf}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "c.z"));
+    EXPECT_TRUE(Rejected(kairos_shape_triangle({0, -1e101, 0}, b, c, &s), KAIROS_ERROR_INVALID_ARGUMENT, "a.y"));
+    EXPECT_TRUE(Rejected(kairos_shape_triangle(a, b, {2, 0, 0}, &s), KAIROS_ERROR_DEGENERATE, "collinear"));
+    EXPECT_TRUE(Rejected(kairos_shape_triangle(a, a, c, &s), KAIROS_ERROR_DEGENERATE, "collinear"));
+    EXPECT_TRUE(Rejected(kairos_shape_triangle(a, b, {0.5, 1e-12, 0}, &s), KAIROS_ERROR_DEGENERATE, "collinear"));
+    EXPECT_EQ(s, kSentinel);
+    ASSERT_EQ(kairos_shape_triangle(a, b, {0.5, 1e-9, 0}, &s), KAIROS_OK);  // thin, still a triangle
+    kairos_shape_release(s);
 }
 
 TEST_F(Shapes, Composites) {

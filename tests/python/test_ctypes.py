@@ -255,11 +255,16 @@ class KairosCtypesTest(unittest.TestCase):
         self.assertEqual(lib.kairos_shape_box(Vec3(1.0, -2.0, 1.0), ctypes.byref(shape)),
                          KAIROS_ERROR_INVALID_ARGUMENT)
         self.assertIn("half_extents", self.last_error())
-        flat = (Vec3 * 5)(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0),
-                          Vec3(0.5, 0.5, 0))
-        self.assertEqual(lib.kairos_shape_convex_hull(flat, 5, ctypes.byref(shape)),
+        self.assertEqual(lib.kairos_shape_convex_hull(None, 0, ctypes.byref(shape)),
                          KAIROS_ERROR_DEGENERATE)
         self.assertEqual(shape.value, 12345)
+        # A flat set is a flat polygon (0.2: a shape of the set's own dimension).
+        flat = (Vec3 * 5)(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0),
+                          Vec3(0.5, 0.5, 0))
+        square = self.make(lib.kairos_shape_convex_hull, flat, 5)
+        top = Vec3()
+        self.assertEqual(lib.kairos_shape_support(square, Vec3(1, 1, 5), ctypes.byref(top)), 0)
+        self.assertEqual((top.x, top.y, top.z), (1.0, 1.0, 0.0))
 
         sphere = self.make(lib.kairos_shape_sphere, 1.0)
         out = Vec3(7.0, 7.0, 7.0)
