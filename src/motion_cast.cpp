@@ -130,22 +130,27 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
     if (!(tolerance >= kMinTolerance)) tolerance = kMinTolerance;
     if (tolerance > 0.5) tolerance = 0.5;
 
-    if (!turns(ma) && !turns(mb)) {
-        // Pure translations: the exact shape cast, nothing paid for rotation.
-        stats.casts = 1;
-        stats.steps = 1;
-        if (out_stats) *out_stats = stats;
-        return shape_cast(a, make_pose(ma.start().position, ma.start().orientation), ma.linear(), b,
-                          make_pose(mb.start().position, mb.start().orientation), mb.linear(), tolerance, max_iterations);
-    }
-
-    const Body body_a(a, ma), body_b(b, mb);
-    const double rate = body_a.rate() + body_b.rate();  // the disks grow at most this fast
     // The contact distance scales with the smaller shape (a rod against a huge wall: the rod), or
     // the other one when that is a point.
     const double radius_a = bounding_radius(a), radius_b = bounding_radius(b);
     const double size = radius_a > 0 && radius_b > 0 ? std::fmin(radius_a, radius_b) : std::fmax(radius_a, radius_b);
     const double delta = tolerance * size;  // "within the tolerance of contact"
+
+    if (!turns(ma) && !turns(mb)) {
+        // Pure translations: the exact shape cast, nothing paid for rotation. It stops with the
+        // ray point within eps * max|y| of A - B, and near contact max|y| <= gap + diam(A - B) <=
+        // gap + 2 (rA + rB); this eps keeps the gap within delta, as the contract says.
+        stats.casts = 1;
+        stats.steps = 1;
+        if (out_stats) *out_stats = stats;
+        const double reach = 2 * (radius_a + radius_b);
+        const double cast_tolerance = reach > 0 && delta > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
+        return shape_cast(a, make_pose(ma.start().position, ma.start().orientation), ma.linear(), b,
+                          make_pose(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance, max_iterations);
+    }
+
+    const Body body_a(a, ma), body_b(b, mb);
+    const double rate = body_a.rate() + body_b.rate();  // the disks grow at most this fast
     const double loop_tolerance = std::fmax(tolerance, kLoopDistanceTolerance);
     const Vec3 linear_rel = mb.linear() - ma.linear();  // B's velocity relative to A's (per step)
     const bool hybrid = strategy != Strategy::DiskBisection;

@@ -289,7 +289,9 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
  * never later than the true first contact by more than tolerance (a fraction of the step), and
  * a contact is never missed. A hit is reported at the first time found at which the shapes are
  * within tolerance * min(rA, rB) of each other (rA, rB: each shape's bounding radius about its
- * local origin; the other one when one shape is a point), so a near miss closer than that counts
+ * local origin, the distance from that origin to the farthest corner of the shape's local
+ * axis-aligned bounding box; the other one when one shape is a point; translations included:
+ * the gap bound holds whether or not the shapes turn), so a near miss closer than that counts
  * as a contact; normal (unit, A toward B) and point (world, midway between the closest points)
  * come from the distance there. Shapes overlapping at the start: toi 0, normal opposing the
  * relative velocity of the contact point. Motions whose start and end orientations are equal

@@ -1,2 +1,5 @@
 # The C boundary through the shared library: bad input for every exported function.
 kairos_gtest(test_capi SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_input.cpp LIBS kairos)
+# Flat shapes in every query against closed forms, and the contract regressions of issue 11.
+kairos_gtest(test_capi_flat SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_flat.cpp LIBS kairos)
+kairos_gtest(test_capi_contract SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_contract.cpp LIBS kairos)
