@@ -463,6 +463,22 @@ uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32
     return best;
 }
 
+// Index of the point of `ids` with the largest |orient(a, b, c, .)| (rounded): the farthest from
+// the plane of a, b, c, measured without forming the plane's normal.
+uint32_t farthest_from_plane(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, uint32_t a, uint32_t b, uint32_t c,
+                             double& out_det) {
+    uint32_t best = ids[0];
+    out_det = -1;
+    for (uint32_t i : ids) {
+        const double det = std::fabs(orient(p[a], p[b], p[c], p[i]).value);
+        if (det > out_det) {
+            out_det = det;
+            best = i;
+        }
+    }
+    return best;
+}
+
 // ---- Which hull points are vertices --------------------------------------------------------------
 
 // Splits the points of the mesh `faces` into the vertices to keep and the rest (`all`: every
@@ -629,19 +645,13 @@ void solid_hull(const std::vector<Vec3>& p, std::vector<uint32_t> ids, std::arra
         }
         // The tetrahedron may have used a dropped point: pick a new one among the kept.
         const uint32_t a = kept.empty() ? all[0] : kept[0];
-        uint32_t b = a, d = a;
+        uint32_t b = a;
         for (uint32_t i : kept)
             if (length_sq(p[i] - p[a]) > length_sq(p[b] - p[a])) b = i;
         double unused = 0;
         const uint32_t c = kept.empty() ? a : farthest_from_line(p, kept, p[a], p[b], unused);
-        double best = 0;
-        for (uint32_t i : kept) {
-            const double v = std::fabs(orient(p[a], p[b], p[c], p[i]).value);
-            if (v > best) {
-                best = v;
-                d = i;
-            }
-        }
+        double unused_det = 0;
+        const uint32_t d = kept.empty() ? a : farthest_from_plane(p, kept, a, b, c, unused_det);
         const int side = orient(p[a], p[b], p[c], p[d]).sign;
         if (side == 0) {
             // Dropping removes only points within ~thin of the rest, so a set thicker than
@@ -726,15 +736,8 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     // cross product would not do: for a nearly collinear triple its direction can be off by
     // eps / sin(angle), enough to pick a point of the plane itself as the farthest.
     const double area2 = length(cross(p[i1] - p[i0], p[i2] - p[i0]));
-    uint32_t i3 = i0;
-    double best_det = -1;
-    for (uint32_t i : ids) {
-        const double det = std::fabs(orient(p[i0], p[i1], p[i2], p[i]).value);
-        if (det > best_det) {
-            best_det = det;
-            i3 = i;
-        }
-    }
+    double best_det = 0;
+    const uint32_t i3 = farthest_from_plane(p, ids, i0, i1, i2, best_det);
     const int s = orient(p[i0], p[i1], p[i2], p[i3]).sign;
     if (s == 0 || !(best_det > tolerance * area2)) {
         // A flat polygon, in the plane through i0 spanned by u and the part of i2 - i0 across u
