@@ -1,4 +1,5 @@
 // C API shape constructors and queries: validate, then build or query the core's shapes.
+#include <cmath>
 #include <cstdint>
 
 #include "boundary.hpp"
@@ -180,8 +181,15 @@ KAIROS_API int32_t kairos_shape_support(const kairos_shape* s, kairos_vec3 direc
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(s, fn, "s");
-        const Vec3 d = read_vec3(direction, fn, "direction");
+        Vec3 d = read_vec3(direction, fn, "direction");
         require_pointer(out, fn, "out");
+        // A support depends only on the direction: scaled by a power of two (exact) to a largest
+        // component in [1, 2), a subnormal or huge direction compares like a unit one (a cone's
+        // apex and rim scores both underflowed to 0 for d = (4e-322, 0, 0), and the apex won).
+        if (const double m = max_abs(d); m > 0) {
+            const int e = std::ilogb(m);
+            d = {std::ldexp(d.x, -e), std::ldexp(d.y, -e), std::ldexp(d.z, -e)};
+        }
         const Vec3 p = support(shape_of(s), d);
         require_finite_result(is_finite(p), fn);
         *out = to_c(p);

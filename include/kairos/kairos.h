@@ -184,8 +184,9 @@ KAIROS_API int32_t kairos_shape_segment(double half_length, kairos_shape** out);
  * in worlds like solids. count 0 is KAIROS_ERROR_DEGENERATE; points may be NULL only then. */
 KAIROS_API int32_t kairos_shape_convex_hull(const kairos_vec3* points, size_t count, kairos_shape** out);
 /* The flat triangle a, b, c (local frame, as given): a floor or terrain piece, a thin plate.
- * Collinear points (c within 1e-10 of the longest side's length from that side's line) or
- * coinciding ones give KAIROS_ERROR_DEGENERATE. */
+ * Collinear points (a corner within 1e-10 of the longest side's length from the line of the
+ * other two), coinciding ones, or a triangle whose sides are within the rounding of its
+ * coordinates (64 ulps of the largest) give KAIROS_ERROR_DEGENERATE. */
 KAIROS_API int32_t kairos_shape_triangle(kairos_vec3 a, kairos_vec3 b, kairos_vec3 c, kairos_shape** out);
 /* Minkowski sum a + b = {x + y}: e.g. a rounded box as box + sphere. Retains a and b. */
 KAIROS_API int32_t kairos_shape_minkowski_sum(const kairos_shape* a, const kairos_shape* b, kairos_shape** out);

@@ -176,6 +176,21 @@ TEST(ShapeInput, ConvexHullPoints) {
     EXPECT_EQ(s, kSentinel);
 }
 
+// Regression (fuzzer): a subnormal direction underflowed both of a cone's candidate scores to 0
+// and the apex won over the rim; huge and tiny directions now pick the unit direction's point.
+TEST(ShapeInput, SupportOfTinyAndHugeDirections) {
+    kairos_shape* cone = nullptr;
+    ASSERT_EQ(kairos_shape_cone(0.0041641107804989705, 1.0049439230945296, &cone), KAIROS_OK);
+    kairos_vec3 unit{}, p{};
+    ASSERT_EQ(kairos_shape_support(cone, {1, 0, 0}, &unit), KAIROS_OK);
+    for (double scale : {1e-300, 1e-310, 4.0513382958982217e-322, 1e300, 1.7e308}) {
+        ASSERT_EQ(kairos_shape_support(cone, {scale, 0, 0}, &p), KAIROS_OK);
+        EXPECT_EQ(p.x, unit.x) << scale;
+        EXPECT_EQ(p.z, unit.z) << scale;
+    }
+    kairos_shape_release(cone);
+}
+
 TEST(ShapeInput, TriangleCorners) {
     kairos_shape* s = kSentinel;
     const kairos_vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
