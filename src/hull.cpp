@@ -589,10 +589,35 @@ void select_vertices(const std::vector<Vec3>& p, const std::vector<Face>& faces,
 
 namespace {
 
+// Exact sign of (a - o) x (b - o) in the plane: the filter bound is Shewchuk's orient2d error
+// bound (3 + 16 eps) eps times the permanent, rounded up; below it, an exact expansion.
+int orient2d(double ox, double oy, double ax, double ay, double bx, double by) {
+    const double l = (ax - ox) * (by - oy), r = (ay - oy) * (bx - ox);
+    const double det = l - r;
+    const double bound = 1e-15 * (std::fabs(l) + std::fabs(r));
+    if (std::fabs(l) + std::fabs(r) > 1e-280) {
+        if (det > bound) return 1;
+        if (det < -bound) return -1;
+    }
+    double u[2][2], v[2][2];  // the four differences, each exact as a two-component sum
+    two_sum(ax, -ox, u[0][0], u[0][1]);
+    two_sum(ay, -oy, u[1][0], u[1][1]);
+    two_sum(bx, -ox, v[0][0], v[0][1]);
+    two_sum(by, -oy, v[1][0], v[1][1]);
+    const double one[2] = {1, 0};
+    Expansion acc;
+    add_triple(acc, +1, u[0], v[1], one);
+    add_triple(acc, -1, u[1], v[0], one);
+    return acc.sign();
+}
+
 // Vertices of the flat convex polygon of the points `ids` (within `thin` of a plane spanned by the
-// unit, orthogonal u and w through `origin`), in order around it: Andrew's monotone chain on the
-// coordinates along u and w. A point within `thin` of the segment joining its chain neighbours
-// is not a vertex (the polygon moves by at most thin), which also drops duplicates.
+// unit, orthogonal u and w through `origin`), in order around it. Andrew's monotone chain on the
+// (rounded) coordinates along u and w with exact turn signs, so the chain is the exact hull of
+// those coordinates whatever their order along a nearly straight run (a tolerance in the turn
+// test dropped the extreme of such a run when rounding sorted it before its neighbours). Then,
+// in rounds, a vertex within thin of the segment between its neighbours goes (the polygon moves
+// by at most thin per round; a vertex whose neighbour goes waits for the next round).
 std::vector<uint32_t> polygon_vertices(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 origin, Vec3 u,
                                        Vec3 w, double thin) {
     struct Planar {
@@ -605,22 +630,45 @@ std::vector<uint32_t> polygon_vertices(const std::vector<Vec3>& p, const std::ve
     std::sort(q.begin(), q.end(), [](const Planar& a, const Planar& b) {
         return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.id < b.id)));
     });
-    // Whether o -> a -> b turns left with a more than thin from the line o-b (twice the area
-    // over the base length).
-    const auto left_turn = [&](const Planar& o, const Planar& a, const Planar& b) {
-        const double cross = (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-        return cross > thin * std::hypot(b.x - o.x, b.y - o.y);
-    };
     std::vector<Planar> chain;
     chain.reserve(2 * q.size());
     for (int pass = 0; pass < 2; ++pass) {
         const size_t base = chain.size();
         for (size_t k = 0; k < q.size(); ++k) {
             const Planar& x = pass == 0 ? q[k] : q[q.size() - 1 - k];
-            while (chain.size() >= base + 2 && !left_turn(chain[chain.size() - 2], chain.back(), x)) chain.pop_back();
+            while (chain.size() >= base + 2) {
+                const Planar& o = chain[chain.size() - 2];
+                const Planar& a = chain.back();
+                if (orient2d(o.x, o.y, a.x, a.y, x.x, x.y) > 0) break;
+                chain.pop_back();
+            }
             chain.push_back(x);
         }
         chain.pop_back();  // the last point of each half starts the other
+    }
+    // A point repeated (or the whole set one point in these coordinates) leaves a chain of one
+    // or two; the caller classified the set as flat, so at least three distinct points exist.
+    std::vector<uint8_t> gone(chain.size(), 0);
+    for (int round = 0; round < 6 && chain.size() > 3; ++round) {
+        const size_t n = chain.size();
+        size_t left = n;
+        std::fill(gone.begin(), gone.begin() + static_cast<std::ptrdiff_t>(n), 0);
+        for (size_t k = 0; k < n && left > 3; ++k) {
+            const size_t before = (k + n - 1) % n, after = (k + 1) % n;
+            if (gone[before] || gone[after]) continue;
+            const Planar &a = chain[before], &x = chain[k], &b = chain[after];
+            const double bx = b.x - a.x, by = b.y - a.y, len2 = bx * bx + by * by;
+            const double t = len2 > 0 ? std::clamp(((x.x - a.x) * bx + (x.y - a.y) * by) / len2, 0.0, 1.0) : 0.0;
+            if (std::hypot(x.x - (a.x + t * bx), x.y - (a.y + t * by)) <= thin) {
+                gone[k] = 1;
+                --left;
+            }
+        }
+        if (left == n) break;
+        size_t kept = 0;
+        for (size_t k = 0; k < n; ++k)
+            if (!gone[k]) chain[kept++] = chain[k];
+        chain.resize(kept);
     }
     std::vector<uint32_t> out;
     out.reserve(chain.size());

@@ -808,6 +808,26 @@ TEST(HullDimensions, NearlyCollinearAndCoplanarSetsKeepEveryExtremePoint) {
     EXPECT_GT(by_dimension[3], 100);
 }
 
+// Regression (fuzzer): a flat sliver far from the origin, a run of points along x (spread 2,000)
+// 2.5e10 away from one apex. In the plane's coordinates the run is nearly parallel to the sort
+// axis, and rounding put its points in two columns one ulp apart; a tolerance in the turn test
+// then kept the last point of the run in sort order instead of its extreme (support off by 650).
+TEST(HullDimensions, SliverWhoseLongSideRunsAcrossTheSortAxis) {
+    const uint64_t seed = kSeed + 6000;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Rng rng(seed);
+    for (int trial = 0; trial < 200; ++trial) {
+        std::vector<Vec3> pts;
+        for (int k = 0; k < 62; ++k) pts.push_back({1e11 + uniform(rng, -1000, 1000), -5e10, 2.5e10});
+        pts.push_back({1e11 + uniform(rng, -1000, 1000), -5e10, 1e-15});
+        HullHolder hull(pts);
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        EXPECT_EQ(hull.shape->dimension, 2);
+        for (const Vec3 d : {Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{-1, -1, 0}, Vec3{1, 0, -1e-6}})
+            ASSERT_EQ(dot(d, support(*hull.shape, d)), max_dot(pts, d)) << "trial " << trial;
+    }
+}
+
 TEST(HullDimensions, PolygonAboveTheClimbingThresholdClimbsItsCycle) {
     // 400 points on a tilted circle, and their centre: a flat polygon of 400 vertices.
     std::vector<Vec3> pts;
