@@ -132,6 +132,12 @@ struct Expansion {
         n = out;
     }
     int sign() const { return n == 0 ? 0 : (c[static_cast<size_t>(n - 1)] > 0 ? 1 : -1); }
+    // The value rounded (to within an ulp or two): components summed from the smallest.
+    double approximate() const {
+        double sum = 0;
+        for (int i = 0; i < n; ++i) sum += c[static_cast<size_t>(i)];
+        return sum;
+    }
 };
 
 // Adds sign * x * y * z exactly, each factor given as a two-component exact value.
@@ -152,9 +158,14 @@ inline void add_triple(Expansion& acc, double sign, const double x[2], const dou
         }
 }
 
-// Exact sign of det[b - a, c - a, q - a]. Exact as long as no partial product underflows
-// (coordinates are rescaled to magnitude < 1 first, so only differences below ~1e-100 could).
-int orient_exact(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
+// det[b - a, c - a, q - a]: its exact sign and its value to within an ulp or two. Exact as long as
+// no partial product underflows (coordinates are rescaled to magnitude < 1 first, so only
+// differences below ~1e-100 could).
+struct Orientation {
+    double value;
+    int sign;
+};
+Orientation orient_exact(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
     double u[3][2], v[3][2], w[3][2];
     for (int i = 0; i < 3; ++i) {
         two_sum(b[i], -a[i], u[i][0], u[i][1]);
@@ -169,15 +180,14 @@ int orient_exact(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
     add_triple(acc, -1, u[1], v[0], w[2]);
     add_triple(acc, +1, u[2], v[0], w[1]);
     add_triple(acc, -1, u[2], v[1], w[0]);
-    return acc.sign();
+    return {acc.approximate(), acc.sign()};
 }
 
-// Floating-point value of det[b - a, c - a, q - a] (six times the signed volume; positive when q
-// is above the plane of the counter-clockwise triangle a, b, c) and its sign, exact.
-struct Orientation {
-    double value;
-    int sign;
-};
+// det[b - a, c - a, q - a] (six times the signed volume; positive when q is above the plane of the
+// counter-clockwise triangle a, b, c): its exact sign, and its value to within 0.1 %. Tolerance
+// decisions divide the value by a face's area to get a distance; on a needle (a triangle 1e9
+// times longer than wide) the rounded determinant can be all rounding, so where the filter
+// leaves less than three correct digits the exact expansion gives the value too.
 inline Orientation orient(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
     const Vec3 u = b - a, v = c - a, w = q - a;
     const double vywz = v.y * w.z, vzwy = v.z * w.y;
@@ -190,11 +200,8 @@ inline Orientation orient(Vec3 a, Vec3 b, Vec3 c, Vec3 q) {
     // Shewchuk's orient3d bound is (7 + 56 eps) eps * permanent with eps = 2^-53 (~7.8e-16);
     // 1e-15 covers it. Below 1e-280 the products may have lost bits to underflow: go exact.
     const double bound = 1e-15 * permanent;
-    if (permanent > 1e-280) {
-        if (det > bound) return {det, 1};
-        if (det < -bound) return {det, -1};
-    }
-    return {det, orient_exact(a, b, c, q)};
+    if (permanent > 1e-280 && std::fabs(det) > 1e3 * bound) return {det, det > 0 ? 1 : -1};
+    return orient_exact(a, b, c, q);
 }
 
 // ---- Distances (for tolerance decisions only; rounding here never shapes the mesh) -----------
@@ -210,7 +217,7 @@ double point_triangle_distance(Vec3 x, Vec3 a, Vec3 b, Vec3 c) {
     const Vec3 n = cross(b - a, c - a);
     const double n2 = length_sq(n);
     if (n2 > 0 && dot(cross(b - a, x - a), n) >= 0 && dot(cross(c - b, x - b), n) >= 0 && dot(cross(a - c, x - c), n) >= 0)
-        return std::fabs(dot(x - a, n)) / std::sqrt(n2);  // projects inside: the plane distance
+        return std::fabs(orient(a, b, c, x).value) / std::sqrt(n2);  // projects inside: the plane distance
     return std::min({point_segment_distance(x, a, b), point_segment_distance(x, b, c), point_segment_distance(x, c, a)});
 }
 
@@ -306,12 +313,9 @@ private:
         const Vec3 w = pts_[q] - a;
         const double det = dot(f.normal, w);
         const double permanent = f.weight.x * std::fabs(w.x) + f.weight.y * std::fabs(w.y) + f.weight.z * std::fabs(w.z);
-        if (permanent > 1e-280) {
-            const double bound = 4e-15 * permanent;
-            if (det > bound) return {det, 1};
-            if (det < -bound) return {det, -1};
-        }
-        return {det, orient_exact(a, pts_[f.v[1]], pts_[f.v[2]], pts_[q])};
+        // Three correct digits or more: the value serves the thin decisions as it is.
+        if (permanent > 1e-280 && std::fabs(det) > 4e-12 * permanent) return {det, det > 0 ? 1 : -1};
+        return orient(a, pts_[f.v[1]], pts_[f.v[2]], pts_[q]);
     }
 
     // Gives each point to the first face among [first_face .. first_face + n_faces) of

@@ -828,6 +828,37 @@ TEST(HullDimensions, SliverWhoseLongSideRunsAcrossTheSortAxis) {
     }
 }
 
+// Regression (fuzzer): a needle, two clusters of points 1e-9 wide and 0.8 apart. The rounded
+// orientation determinant of its long triangles is all rounding, so the set was judged flat and
+// lost a corner (support off by 1.3e-9). Needles 1e-12 to 1e-6 wide keep every extreme point:
+// the support is within the thin tolerance (1e-12 of the extent) of the inputs' maximum, or the
+// flatness tolerance (1e-10) for needles thinner than that.
+TEST(HullDimensions, NeedleOfTwoTinyClusters) {
+    const uint64_t seed = kSeed + 7000;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Rng rng(seed);
+    for (int trial = 0; trial < 300; ++trial) {
+        const double width = std::pow(10.0, uniform(rng, -12, -6));
+        const Vec3 ends[2] = {{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)},
+                              {uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}};
+        std::vector<Vec3> pts;
+        const int n = static_cast<int>(uniform_int(rng, 5, 16));
+        for (int k = 0; k < n; ++k) pts.push_back(ends[k % 2] + width * random_unit(rng));
+        HullHolder hull(pts);
+        ASSERT_EQ(hull.status, HullStatus::Ok);
+        double extent = 0;
+        for (const Vec3& a : pts)
+            for (const Vec3& b : pts) extent = std::max(extent, max_abs(a - b));
+        // A needle thinner than the flatness tolerance (1e-10 of the extent) is a segment or flat.
+        const double allowed = (hull.shape->dimension == 3 ? 4e-12 : 2e-10) * extent + 8 * kEps;
+        for (int k = 0; k < 100; ++k) {
+            const Vec3 d = random_unit(rng);
+            ASSERT_GE(dot(d, support(*hull.shape, d)), max_dot(pts, d) - allowed)
+                << "trial " << trial << ", width " << width << ", dimension " << int(hull.shape->dimension);
+        }
+    }
+}
+
 TEST(HullDimensions, PolygonAboveTheClimbingThresholdClimbsItsCycle) {
     // 400 points on a tilted circle, and their centre: a flat polygon of 400 vertices.
     std::vector<Vec3> pts;
