@@ -1,0 +1,528 @@
+// Fuzz target: pair queries (distance, intersect, ray, shape and motion casts) on two fuzz-built
+// shapes at fuzz poses, motions and settings, each result checked against the contract and
+// against the shapes' support-function models (separating planes bound every distance).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "fuzz_support.hpp"
+
+namespace {
+
+using namespace kfuzz;
+
+// A shape at a pose; `null_pose` passes NULL (identity) instead.
+struct Posed {
+    const Built* shape = nullptr;
+    PoseCase pose;
+    bool null_pose = false;
+    const kairos_pose* pose_arg() const { return null_pose ? nullptr : &pose.pose; }
+    const Model& model() const { return *shape->model; }
+};
+
+Posed pose_shape(Input& in, const Built& shape) {
+    Posed p;
+    p.shape = &shape;
+    if (in.rare(6)) p.null_pose = true;
+    else p.pose = make_pose(in);
+    return p;
+}
+
+// Size of a pair query: both shapes, how far apart their origins are, how far they move.
+real pair_size(const Posed& a, const Posed& b, const Vr& moves = {}) {
+    return a.model().magnitude + b.model().magnitude + norm(to_real(a.pose.pose.position) - to_real(b.pose.pose.position)) +
+           norm(moves);
+}
+
+// Slack of support-plane comparisons on a posed pair: the models' own, 1e-9 of the size (the
+// library's rotation matrices and rounding), and ulps of the positions (far from the origin).
+real pair_slack(const Posed& a, const Posed& b, real size) {
+    return a.model().tolerance + b.model().tolerance + 1e-9L * size +
+           32 * ulp(std::fmax(biggest(a.pose.pose.position), biggest(b.pose.pose.position))) + kFloor;
+}
+
+// The largest gap between the posed shapes along the 26 directions and `extra` (any length):
+// a lower bound of their distance. Writes the direction that gave it.
+real max_gap(const Placed& a, const Placed& b, const std::vector<Vr>& extra, Vr* where = nullptr) {
+    real best = -INFINITY;
+    auto consider = [&](const Vr& u) {
+        const real g = gap(a, b, u);
+        if (g > best) {
+            best = g;
+            if (where != nullptr) *where = u;
+        }
+    };
+    for (const Vr& u : unit_directions()) consider(u);
+    for (const Vr& d : extra) {
+        const real n = norm(d);
+        if (n > 0 && std::isfinite(n)) consider((1 / n) * d);
+    }
+    return best;
+}
+
+bool inputs_moderate(const Posed& a, const Posed& b) {
+    return a.model().moderate && b.model().moderate && a.pose.moderate && b.pose.moderate;
+}
+
+// Non-finite numbers in a successful result are a violation, unless the build tolerates them
+// on inputs beyond the moderate range.
+bool finite_or_report(bool ok, bool moderate_inputs, const char* what) {
+    if (ok) return true;
+    if (KAIROS_FUZZ_ALLOW_NONFINITE_ON_HUGE && !moderate_inputs) return false;
+    violation("%s returned KAIROS_OK with a non-finite number in its result", what);
+}
+
+bool unit(const kairos_vec3& v) { return std::fabs(norm(to_real(v)) - 1) < 1e-6L; }
+
+void check_termination(int32_t t, const char* what) {
+    if (t < KAIROS_TERMINATION_NONE || t > KAIROS_TERMINATION_HIT) violation("%s: termination %d is unknown", what, t);
+}
+
+void expect_pair(const Posed& a, const Posed& b, Verdict& v) {
+    expect_pose(a.pose, v);
+    expect_pose(b.pose, v);
+    if (!a.model().moderate || !b.model().moderate) v.unsure();
+}
+
+// "A <shape> at <pose>, B <shape> at <pose>" for reports.
+const char* scene(const Posed& a, const Posed& b) {
+    static std::string s;
+    s = "A " + describe(a.model()) + " at " + show(a.pose.pose) + ", B " + describe(b.model()) + " at " + show(b.pose.pose);
+    return s.c_str();
+}
+
+// ---- Distance ----------------------------------------------------------------------------------
+
+struct DistanceCall {
+    int32_t status;
+    kairos_distance_result result;
+};
+
+DistanceCall call_distance(const Posed& a, const Posed& b, const SettingsCase& s) {
+    DistanceCall c;
+    poison(c.result);
+    c.status = observe("kairos_distance", [&] {
+        return kairos_distance(a.shape->shape.get(), a.pose_arg(), b.shape->shape.get(), b.pose_arg(),
+                               s.use ? &s.settings : nullptr, &c.result);
+    });
+    Verdict v;
+    expect_pair(a, b, v);
+    expect_settings(s, v);
+    v.check(c.status, "kairos_distance");
+    if (c.status != KAIROS_OK && !poisoned(c.result)) violation("kairos_distance failed but wrote *out");
+    return c;
+}
+
+// Checks a successful distance result; false when it holds tolerated non-finite numbers.
+bool check_distance(const Posed& a, const Posed& b, const SettingsCase& s, const kairos_distance_result& r) {
+    char what[160];
+    if (s.use)
+        std::snprintf(what, sizeof what, "kairos_distance(settings: struct_size %u, tolerance %.17g, max_iterations %u)",
+                      s.settings.struct_size, s.settings.tolerance, s.settings.max_iterations);
+    else
+        std::snprintf(what, sizeof what, "kairos_distance(settings NULL)");
+    const bool all_finite = std::isfinite(r.distance) && finite(r.point_a) && finite(r.point_b) && finite(r.axis);
+    if (!finite_or_report(all_finite, inputs_moderate(a, b), what)) return false;
+    check_termination(r.termination, what);
+    if (!(r.distance >= 0)) violation("%s: distance %.17g < 0", what, r.distance);
+    if (r.intersecting != 0 && r.intersecting != 1) violation("%s: intersecting is %d", what, r.intersecting);
+    if (r.intersecting == 1 && r.distance != 0) violation("%s: intersecting with distance %.17g", what, r.distance);
+    if (!unit(r.axis)) violation("%s: axis %s is not unit", what, show(r.axis));
+    const Placed pa = place(a.model(), a.pose.pose), pb = place(b.model(), b.pose.pose);
+    const real size = pair_size(a, b);
+    const real slack = pair_slack(a, b, size);
+    // A separating plane bounds the distance from below, whatever GJK did.
+    const std::vector<Vr> extra = {to_real(r.axis), to_real(b.pose.pose.position) - to_real(a.pose.pose.position)};
+    Vr u;
+    const real g = max_gap(pa, pb, extra, &u);
+    if (!(r.distance >= g - slack))
+        violation("%s = %.17g (intersecting %d, termination %d), but the shapes are %.17Lg apart along (%.6Lg %.6Lg "
+                  "%.6Lg); %s",
+                  what, r.distance, r.intersecting, r.termination, g, u.x, u.y, u.z, scene(a, b));
+    // And the balls about the origins that lie inside the shapes bound it from above (the estimate
+    // may exceed the distance by the requested relative tolerance; a guard-stopped one is rough).
+    if (r.termination != KAIROS_TERMINATION_MAX_ITERATIONS && inner_radius(a.model()) >= 0 && inner_radius(b.model()) >= 0) {
+        const real apart = norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)) -
+                           inner_radius(a.model()) - inner_radius(b.model());
+        const real t = s.use ? real(s.settings.tolerance) : 1e-10L;
+        const real upper = std::fmax(real(0), apart) * (1 + 2 * t / (1 - t)) + slack;
+        if (!(r.distance <= upper))
+            violation("%s = %.17g (intersecting %d, termination %d), but balls inside the shapes are %.17Lg apart; %s",
+                      what, r.distance, r.intersecting, r.termination, apart, scene(a, b));
+    }
+    // The closest points lie on their shapes.
+    for (const Vr& d : unit_directions()) {
+        if (!(dot(d, to_real(r.point_a)) <= support_value(pa, d) + slack))
+            violation("%s: point_a %s lies outside A (distance %.17g, termination %d); %s", what, show(r.point_a),
+                      r.distance, r.termination, scene(a, b));
+        if (!(dot(d, to_real(r.point_b)) <= support_value(pb, d) + slack))
+            violation("%s: point_b %s lies outside B (distance %.17g, termination %d); %s", what, show(r.point_b),
+                      r.distance, r.termination, scene(a, b));
+    }
+    const real between = norm(to_real(r.point_b) - to_real(r.point_a));
+    if (!(std::fabs(between - r.distance) <= slack + 1e-9L * r.distance))
+        violation("%s = %.17g but |point_b - point_a| = %.17Lg (termination %d); %s", what, r.distance, between,
+                  r.termination, scene(a, b));
+    return true;
+}
+
+void query_distance(Input& in, const Posed& a, const Posed& b) {
+    const SettingsCase s = make_settings(in);
+    const DistanceCall ab = call_distance(a, b, s);
+    if (ab.status != KAIROS_OK || !check_distance(a, b, s, ab.result)) return;
+    const DistanceCall ba = call_distance(b, a, s);
+    if (ba.status != KAIROS_OK || !check_distance(b, a, s, ba.result)) return;
+    if (ab.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS ||
+        ba.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS)
+        return;
+    // Symmetric within the requested relative accuracy (the estimate may exceed the true
+    // distance by tolerance / (1 - tolerance) of it) and 1e-6 of the size.
+    const real t = s.tolerance;
+    const real d1 = ab.result.distance, d2 = ba.result.distance;
+    const real slack = 1e-6L * pair_size(a, b) + 2 * t / (1 - t) * std::fmax(d1, d2) + pair_slack(a, b, 0);
+    if (!(std::fabs(d1 - d2) <= slack))
+        violation("kairos_distance(a, b) = %.17Lg but kairos_distance(b, a) = %.17Lg (terminations %d, %d; "
+                  "tolerance %g): %s",
+                  d1, d2, ab.result.termination, ba.result.termination, s.tolerance, scene(a, b));
+}
+
+// ---- Intersect ---------------------------------------------------------------------------------
+
+void query_intersect(Input& in, const Posed& a, const Posed& b) {
+    kairos_vec3 cache{0, 0, 0};
+    bool use_cache = true;
+    switch (in.pick(4)) {
+        case 0: break;
+        case 1: use_cache = false; break;
+        case 2: cache = direction(in); break;
+        default: {
+            const DistanceCall d = call_distance(a, b, SettingsCase{});
+            if (d.status == KAIROS_OK) cache = d.result.axis;
+            break;
+        }
+    }
+    const kairos_vec3 cache_before = cache;
+    int32_t out;
+    poison(out);
+    const bool null_out = in.rare(32);
+    const int32_t status = observe("kairos_intersect", [&] {
+        return kairos_intersect(a.shape->shape.get(), a.pose_arg(), b.shape->shape.get(), b.pose_arg(),
+                                use_cache ? &cache : nullptr, null_out ? nullptr : &out);
+    });
+    Verdict v;
+    expect_pair(a, b, v);
+    if (null_out) v.require(KAIROS_ERROR_NULL_ARGUMENT);
+    v.check(status, "kairos_intersect");
+    if (status != KAIROS_OK) {
+        if (!poisoned(out) || std::memcmp(&cache, &cache_before, sizeof cache) != 0)
+            violation("kairos_intersect failed but wrote *out or *axis_cache");
+        return;
+    }
+    if (out != 0 && out != 1) violation("kairos_intersect: *out is %d", out);
+    const Placed pa = place(a.model(), a.pose.pose), pb = place(b.model(), b.pose.pose);
+    const real size = pair_size(a, b);
+    const real slack = pair_slack(a, b, size);
+    if (out == 1) {
+        Vr u;
+        const real g = max_gap(pa, pb, {to_real(b.pose.pose.position) - to_real(a.pose.pose.position)}, &u);
+        if (g > slack)
+            violation("kairos_intersect = 1, but the shapes are %.17Lg apart along (%.6Lg %.6Lg %.6Lg) (slack %.3Lg); %s",
+                      g, u.x, u.y, u.z, slack, scene(a, b));
+    } else if (inner_radius(a.model()) >= 0 && inner_radius(b.model()) >= 0 &&
+               norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)) <
+                   inner_radius(a.model()) + inner_radius(b.model()) - slack) {
+        violation("kairos_intersect = 0, but balls inside the shapes overlap (origins %.17Lg apart, inner radii %.17Lg "
+                  "and %.17Lg); %s",
+                  norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)), inner_radius(a.model()),
+                  inner_radius(b.model()), scene(a, b));
+    }
+    if (out == 0 && use_cache) {
+        if (!finite_or_report(finite(cache), inputs_moderate(a, b), "kairos_intersect")) return;
+        const Vr axis = to_real(cache);
+        const real n = norm(axis);
+        if (!(n > 0)) violation("kairos_intersect = 0 with a zero separating axis");
+        const Vr u = (1 / n) * axis;
+        const real g = std::fmax(gap(pa, pb, u), gap(pa, pb, -1 * u));
+        if (!(g >= -slack))
+            violation("kairos_intersect = 0 with axis %s, which does not separate the shapes (overlap %.17Lg, slack "
+                      "%.3Lg); %s",
+                      show(cache), -g, slack, scene(a, b));
+    }
+    // Consistent with the distance: shapes farther apart than 1e-6 of their size do not intersect.
+    const DistanceCall d = call_distance(a, b, SettingsCase{});
+    if (d.status != KAIROS_OK || !check_distance(a, b, SettingsCase{}, d.result)) return;
+    if (d.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS) return;
+    if (out == 1 && d.result.distance > 1e-6L * size + slack)
+        violation("kairos_intersect = 1 but kairos_distance = %.17g (size %.3Lg); %s", d.result.distance, size,
+                  scene(a, b));
+}
+
+// ---- Casts -------------------------------------------------------------------------------------
+
+// Fields every successful cast result must have; false when non-finite numbers are tolerated.
+bool check_cast_fields(const kairos_cast_result& r, bool moderate_inputs, const char* what) {
+    check_termination(r.termination, what);
+    if (r.hit != 0 && r.hit != 1) violation("%s: hit is %d", what, r.hit);
+    if (!finite_or_report(std::isfinite(r.toi), moderate_inputs, what)) return false;
+    if (!(r.toi >= 0 && r.toi <= 1)) violation("%s: toi %.17g outside [0, 1]", what, r.toi);
+    if (r.hit == 0) {
+        if (r.toi != 1) violation("%s: no hit but toi %.17g (must be 1)", what, r.toi);
+        return true;
+    }
+    if (!finite_or_report(finite(r.point) && finite(r.normal), moderate_inputs, what)) return false;
+    if (!unit(r.normal)) violation("%s: hit with normal %s, not unit", what, show(r.normal));
+    return true;
+}
+
+// Never a missed contact: balls inside the shapes about their origins, which move linearly over
+// the step whatever the turn, first meet at `enter` (negative: never); the cast must hit by then,
+// up to its tolerance (a fraction of the step).
+void check_not_missed(const char* what, const kairos_cast_result& r, real enter, real tolerance, const std::string& where) {
+    if (enter < 0) return;
+    if (r.hit != 1)
+        violation("%s: no hit, but balls inside the shapes meet at t = %.17Lg; %s", what, enter, where.c_str());
+    if (!(r.toi <= enter + tolerance + 1e-9L))
+        violation("%s: hit at toi %.17g, but balls inside the shapes meet at t = %.17Lg already; %s", what, r.toi, enter,
+                  where.c_str());
+}
+
+kairos_vec3 translation(Input& in, const kairos_vec3& aim) {
+    switch (in.pick(5)) {
+        case 0: return {0, 0, 0};
+        case 1: return small_vec(in, 8);
+        case 2: {
+            // Toward `aim`, stopping short, reaching it, or going past.
+            static const double reach[6] = {1.0, 0.5, 2.0, 0.999999, 1.000001, 10.0};
+            const double k = reach[in.pick(6)];
+            return {aim.x * k, aim.y * k, aim.z * k};
+        }
+        case 3: return small_vec(in, power_of_ten(in));
+        default: return direction(in);
+    }
+}
+
+kairos_vec3 minus(const kairos_vec3& a, const kairos_vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+void query_ray(Input& in, const Posed& s) {
+    const kairos_vec3 origin = in.pick(2) == 0 ? position(in) : [&] {
+        const kairos_vec3 d = small_vec(in, 4 * static_cast<double>(s.model().magnitude) + 1);
+        const kairos_vec3& p = s.pose.pose.position;
+        return kairos_vec3{p.x + d.x, p.y + d.y, p.z + d.z};
+    }();
+    const kairos_vec3 t = translation(in, minus(s.pose.pose.position, origin));
+    const SettingsCase settings = make_settings(in);
+    kairos_cast_result r;
+    poison(r);
+    const int32_t status = observe("kairos_ray_cast", [&] {
+        return kairos_ray_cast(s.shape->shape.get(), s.pose_arg(), origin, t, settings.use ? &settings.settings : nullptr, &r);
+    });
+    Verdict v;
+    expect_pose(s.pose, v);
+    expect_settings(settings, v);
+    if (!finite(origin) || !finite(t)) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    else if (!moderate(origin) || !moderate(t) || !s.model().moderate) v.unsure();
+    v.check(status, "kairos_ray_cast");
+    if (status != KAIROS_OK) {
+        if (!poisoned(r)) violation("kairos_ray_cast failed but wrote *out");
+        return;
+    }
+    const bool moderate_inputs = s.model().moderate && s.pose.moderate && moderate(origin) && moderate(t);
+    if (!check_cast_fields(r, moderate_inputs, "kairos_ray_cast")) return;
+    {
+        const real reach = inner_radius(s.model()) < 0 ? -1 : inner_radius(s.model()) * (1 - 1e-9L) -
+                           32 * ulp(std::fmax(biggest(origin) + biggest(t), biggest(s.pose.pose.position)));
+        const std::string where = std::string("origin ") + show(origin) + ", translation " + show(t) + ", " +
+                                  describe(s.model()) + " at " + show(s.pose.pose);
+        check_not_missed("kairos_ray_cast", r, first_within(to_real(origin) - to_real(s.pose.pose.position), to_real(t), reach),
+                         settings.tolerance, where);
+    }
+    if (r.hit == 0) return;
+    const Placed placed = place(s.model(), s.pose.pose);
+    const Vr o = to_real(origin), tr = to_real(t);
+    const Vr at = o + real(r.toi) * tr;
+    const real size = s.model().magnitude + norm(o - to_real(s.pose.pose.position)) + norm(tr);
+    const real slack = (2 * real(settings.tolerance) + 1e-6L) * size + s.model().tolerance +
+                       32 * ulp(std::fmax(biggest(origin), biggest(s.pose.pose.position))) + kFloor;
+    // A ray starting inside reports a point of the surface, not its origin: only later hits are
+    // where the ray is.
+    if (r.toi > 0 && !(norm(to_real(r.point) - at) <= slack))
+        violation("kairos_ray_cast: hit point %s is %.17Lg from the ray point at toi %.17g (slack %.3Lg); origin %s, "
+                  "translation %s, %s at %s",
+                  show(r.point), norm(to_real(r.point) - at), r.toi, slack, show(origin), show(t),
+                  describe(s.model()).c_str(), show(s.pose.pose));
+    if (r.toi > 0) {
+        for (const Vr& d : unit_directions())
+            if (!(dot(d, to_real(r.point)) <= support_value(placed, d) + slack))
+                violation("kairos_ray_cast: hit point %s at toi %.17g lies outside the shape; origin %s, translation %s, "
+                          "%s at %s",
+                          show(r.point), r.toi, show(origin), show(t), describe(s.model()).c_str(), show(s.pose.pose));
+        // Never late: at toi the ray point has not crossed the plane of the reported normal.
+        const Vr n = to_real(r.normal);
+        const real h = support_value(placed, n);
+        if (!(dot(n, at) >= h - slack))
+            violation("kairos_ray_cast: at toi %.17g the ray point is %.17Lg past the support plane of normal %s; "
+                      "origin %s, translation %s, %s at %s",
+                      r.toi, h - dot(n, at), show(r.normal), show(origin), show(t), describe(s.model()).c_str(),
+                      show(s.pose.pose));
+    }
+}
+
+void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
+    const kairos_vec3 ta = in.pick(2) == 0 ? kairos_vec3{0, 0, 0} : translation(in, minus(b.pose.pose.position, a.pose.pose.position));
+    const kairos_vec3 tb = translation(in, minus(a.pose.pose.position, b.pose.pose.position));
+    const SettingsCase settings = make_settings(in);
+    kairos_cast_result r;
+    poison(r);
+    const int32_t status = observe("kairos_shape_cast", [&] {
+        return kairos_shape_cast(a.shape->shape.get(), a.pose_arg(), ta, b.shape->shape.get(), b.pose_arg(), tb,
+                                 settings.use ? &settings.settings : nullptr, &r);
+    });
+    Verdict v;
+    expect_pair(a, b, v);
+    expect_settings(settings, v);
+    if (!finite(ta) || !finite(tb)) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    else if (!moderate(ta) || !moderate(tb)) v.unsure();
+    v.check(status, "kairos_shape_cast");
+    if (status != KAIROS_OK) {
+        if (!poisoned(r)) violation("kairos_shape_cast failed but wrote *out");
+        return;
+    }
+    const bool moderate_inputs = inputs_moderate(a, b) && moderate(ta) && moderate(tb);
+    if (!check_cast_fields(r, moderate_inputs, "kairos_shape_cast")) return;
+    const Vr rel = to_real(tb) - to_real(ta);
+    const real size = pair_size(a, b, to_real(ta)) + norm(to_real(tb));
+    const real slack = (2 * real(settings.tolerance) + 1e-6L) * size + pair_slack(a, b, size);
+    {
+        const real ra = inner_radius(a.model()), rb = inner_radius(b.model());
+        const real reach = ra < 0 || rb < 0 ? -1
+                                            : (ra + rb) * (1 - 1e-9L) - pair_slack(a, b, 0) - 32 * ulp(biggest(ta) + biggest(tb));
+        const Vr p0 = to_real(b.pose.pose.position) - to_real(a.pose.pose.position);
+        check_not_missed("kairos_shape_cast", r, first_within(p0, rel, reach), settings.tolerance,
+                         std::string("A moves ") + show(ta) + ", B moves " + show(tb) + "; " + scene(a, b));
+    }
+    const Placed pa0 = place(a.model(), a.pose.pose), pb0 = place(b.model(), b.pose.pose);
+    if (r.hit == 0 || r.toi == 0) {
+        // A hit at toi 0 means touching at the start: no plane may separate them by more.
+        if (r.hit == 1) {
+            Vr u;
+            const real g = max_gap(pa0, pb0, {to_real(b.pose.pose.position) - to_real(a.pose.pose.position)}, &u);
+            if (g > slack)
+                violation("kairos_shape_cast: hit at toi 0 but at the start the shapes are %.17Lg apart along "
+                          "(%.6Lg %.6Lg %.6Lg) (slack %.3Lg); A moves %s, B moves %s; %s",
+                          g, u.x, u.y, u.z, slack, show(ta), show(tb), scene(a, b));
+        }
+        return;
+    }
+    // A contact opposes the relative motion.
+    if (norm(rel) > 0 && !(dot(to_real(r.normal), rel) <= 1e-6L * norm(rel)))
+        violation("kairos_shape_cast: normal %s does not oppose the relative motion %s; %s", show(r.normal),
+                  show(minus(tb, ta)), scene(a, b));
+    // At toi: the point lies on both shapes, and the normal's plane still separates them (never late).
+    Placed pa = pa0, pb = pb0;
+    pa.position = pa0.position + real(r.toi) * to_real(ta);
+    pb.position = pb0.position + real(r.toi) * to_real(tb);
+    const Vr n = to_real(r.normal);
+    const real overlap = -gap(pa, pb, n);
+    if (!(overlap <= slack))
+        violation("kairos_shape_cast: at toi %.17g the shapes overlap by %.17Lg along the normal %s (slack %.3Lg); "
+                  "A moves %s, B moves %s; %s",
+                  r.toi, overlap, show(r.normal), slack, show(ta), show(tb), scene(a, b));
+    for (const Vr& d : unit_directions()) {
+        const real x = dot(d, to_real(r.point));
+        if (!(x <= support_value(pa, d) + slack) || !(x <= support_value(pb, d) + slack))
+            violation("kairos_shape_cast: contact point %s at toi %.17g lies outside A or B; A moves %s, B moves %s; %s",
+                      show(r.point), r.toi, show(ta), show(tb), scene(a, b));
+    }
+}
+
+// ---- Motion cast -------------------------------------------------------------------------------
+
+void query_motion_cast(Input& in, const Posed& a, const Posed& b) {
+    kairos_motion ma{a.pose.pose, a.pose.pose}, mb{b.pose.pose, b.pose.pose};
+    const PoseCase a1 = make_pose_near(in, a.pose.pose), b1 = make_pose_near(in, b.pose.pose);
+    ma.end = a1.pose;
+    mb.end = b1.pose;
+    if (in.pick(3) == 1) {
+        // B heads for where A is.
+        mb.end.position = {a.pose.pose.position.x + 0.1 * in.symmetric(), a.pose.pose.position.y,
+                           a.pose.pose.position.z};
+    }
+    const PoseCase b_end = classify(mb.end);
+    const SettingsCase settings = make_settings(in);
+    kairos_cast_result r;
+    poison(r);
+    const bool null_motion = in.rare(32);
+    const int32_t status = observe("kairos_motion_cast", [&] {
+        return kairos_motion_cast(a.shape->shape.get(), &ma, b.shape->shape.get(), null_motion ? nullptr : &mb,
+                                  settings.use ? &settings.settings : nullptr, &r);
+    });
+    Verdict v;
+    expect_pair(a, b, v);
+    expect_pose(a1, v);
+    expect_pose(b_end, v);
+    expect_settings(settings, v);
+    if (null_motion) v.require(KAIROS_ERROR_NULL_ARGUMENT);
+    v.check(status, "kairos_motion_cast");
+    if (status != KAIROS_OK) {
+        if (!poisoned(r)) violation("kairos_motion_cast failed but wrote *out");
+        return;
+    }
+    const bool moderate_inputs = inputs_moderate(a, b) && a1.moderate && b_end.moderate;
+    if (!check_cast_fields(r, moderate_inputs, "kairos_motion_cast")) return;
+    {
+        const Vr p0 = to_real(mb.start.position) - to_real(ma.start.position);
+        const Vr dv = (to_real(mb.end.position) - to_real(mb.start.position)) -
+                      (to_real(ma.end.position) - to_real(ma.start.position));
+        const real ra = inner_radius(a.model()), rb = inner_radius(b.model());
+        const real reach = ra < 0 || rb < 0 ? -1
+                                            : (ra + rb) * (1 - 1e-9L) - pair_slack(a, b, 0) -
+                                                  32 * ulp(biggest(ma.end.position) + biggest(mb.end.position));
+        const std::string where = "A " + describe(a.model()) + " " + show(ma.start) + " -> " + show(ma.end) + ", B " +
+                                  describe(b.model()) + " " + show(mb.start) + " -> " + show(mb.end);
+        check_not_missed("kairos_motion_cast", r, first_within(p0, dv, reach), settings.tolerance, where);
+    }
+    if (r.hit == 0) return;
+    const Vr moves = (to_real(ma.end.position) - to_real(ma.start.position)) -
+                     (to_real(mb.end.position) - to_real(mb.start.position));
+    const real size = pair_size(a, b, moves) + norm(to_real(ma.end.position) - to_real(ma.start.position));
+    const real t = settings.tolerance;
+    // A hit is a time at which the shapes are within tolerance * min(rA, rB) of each other.
+    const real near = t * (a.model().magnitude + b.model().magnitude) + 1e-6L * size + pair_slack(a, b, size);
+    if (r.toi > 0 && r.termination != KAIROS_TERMINATION_HIT) return;  // a guard stopped the search
+    kairos_quat qa, qb;
+    Vr pa_at, pb_at;
+    motion_at(ma, r.toi, qa, pa_at);
+    motion_at(mb, r.toi, qb, pb_at);
+    const Placed pa = place(a.model(), qa, pa_at), pb = place(b.model(), qb, pb_at);
+    Vr u;
+    const real g = max_gap(pa, pb, {pb_at - pa_at, to_real(r.normal)}, &u);
+    if (g > near)
+        violation("kairos_motion_cast: hit at toi %.17g (termination %d) but the shapes are %.17Lg apart there along "
+                  "(%.6Lg %.6Lg %.6Lg) (allowed %.3Lg); A %s %s -> %s, B %s %s -> %s, tolerance %g",
+                  r.toi, r.termination, g, u.x, u.y, u.z, near, describe(a.model()).c_str(), show(ma.start),
+                  show(ma.end), describe(b.model()).c_str(), show(mb.start), show(mb.end), settings.tolerance);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    Input in(data, size);
+    ShapeBuilder builder(in, /*max_depth=*/1, /*thorough=*/false);
+    const Built a = builder.build_or_sphere();
+    const Built b = builder.build_or_sphere();
+    for (int i = 0; i < 6 && (i == 0 || in.remaining() > 0); ++i) {
+        const Posed pa = pose_shape(in, a), pb = pose_shape(in, b);
+        switch (in.pick(5)) {
+            case 0: query_distance(in, pa, pb); break;
+            case 1: query_intersect(in, pa, pb); break;
+            case 2: query_ray(in, in.pick(2) == 0 ? pa : pb); break;
+            case 3: query_shape_cast(in, pa, pb); break;
+            default: query_motion_cast(in, pa, pb); break;
+        }
+    }
+    return 0;
+}

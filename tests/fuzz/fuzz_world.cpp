@@ -1,0 +1,512 @@
+// Fuzz target: sequences of world operations (create with each broad phase, add, remove,
+// set_pose, move, step, contacts, overlaps, step_stats, stale and NULL arguments) decoded from
+// bytes, each checked against the contract; after every step the contacts and overlaps are
+// checked, and pairs whose inner balls provably meet during the step must have a contact.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "fuzz_support.hpp"
+
+namespace {
+
+using namespace kfuzz;
+
+constexpr size_t kMaxObjects = 16;
+constexpr int kMaxOperations = 64;
+
+struct Object {
+    kairos_object_id id = 0;
+    uint64_t user = 0;
+    ModelPtr model;
+    PoseCase pose;          // now (start of the next step)
+    PoseCase end;           // end of the next step, when moving
+    bool moving = false;
+};
+
+class WorldFuzz {
+public:
+    explicit WorldFuzz(Input& in) : in_(in) {}
+    ~WorldFuzz() { kairos_world_destroy(world_); }
+    void run();
+
+private:
+    bool create();
+    void add();
+    void remove();
+    void set_pose(bool as_move);
+    bool step();  // false when the step failed (rightly): the world's state is then not tracked
+    void read_results(bool after_step);
+    void stats();
+    void null_arguments();
+    // An id to act on: live, removed, random, 0, or a live one with another generation.
+    kairos_object_id choose_id(Object** live_out);
+    Object* find(kairos_object_id id);
+    // Every pose involved is finite, unit and of moderate magnitude, every shape moderate.
+    bool all_moderate() const;
+
+    Input& in_;
+    kairos_world* world_ = nullptr;
+    double tolerance_ = 1e-10;
+    uint32_t max_iterations_ = 256;
+    std::vector<Built> shapes_;
+    std::vector<Object> live_;
+    std::vector<kairos_object_id> removed_;
+    std::set<kairos_object_id> issued_;
+    uint64_t next_user_ = 1000;
+    bool stepped_ = false;          // a step succeeded: results describe it
+    std::vector<Object> step_objects_;  // the objects of that step, with their start and end poses
+};
+
+bool WorldFuzz::create() {
+    // Room past the struct for a newer caller's tail.
+    struct {
+        kairos_world_settings s;
+        unsigned char tail[16];
+    } buf;
+    std::memset(&buf, 0, sizeof buf);
+    kairos_world_settings_init(&buf.s);
+    Verdict v;
+    bool use = true;
+    switch (in_.pick(8)) {
+        case 0: use = false; break;
+        case 1:
+        case 2:
+        case 3: buf.s.broad_phase = static_cast<int32_t>(in_.pick(3)); break;
+        case 4: {
+            static const int32_t bad[4] = {3, -1, 0x7fffffff, static_cast<int32_t>(0x80000000u)};
+            buf.s.broad_phase = bad[in_.pick(4)];
+            v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+            break;
+        }
+        case 5: {
+            // Smaller than the first published size, or larger with a zero or non-zero tail.
+            const unsigned k = in_.pick(4);
+            if (k == 0) buf.s.struct_size = 4;
+            else if (k == 1) buf.s.struct_size = sizeof(kairos_world_settings) - 8;
+            else buf.s.struct_size = sizeof(kairos_world_settings) + 16;
+            if (k == 3) buf.tail[in_.pick(16)] = static_cast<unsigned char>(1 + in_.pick(255));
+            if (k != 2) v.require(KAIROS_ERROR_STRUCT_SIZE);
+            buf.s.broad_phase = static_cast<int32_t>(in_.pick(3));
+            break;
+        }
+        default: {
+            buf.s.broad_phase = static_cast<int32_t>(in_.pick(3));
+            const SettingsCase q = make_settings(in_);
+            if (q.use) buf.s.query = q.settings;
+            expect_settings(q, v);
+            break;
+        }
+    }
+    kairos_world* out;
+    poison(out);
+    const int32_t status =
+        observe("kairos_world_create", [&] { return kairos_world_create(use ? &buf.s : nullptr, &out); });
+    v.check(status, "kairos_world_create");
+    if (status != KAIROS_OK) {
+        if (!poisoned(out)) violation("kairos_world_create failed but wrote *out");
+        return false;
+    }
+    if (out == nullptr) violation("kairos_world_create returned KAIROS_OK with *out NULL");
+    world_ = out;
+    if (use) {
+        tolerance_ = buf.s.query.tolerance;
+        max_iterations_ = buf.s.query.max_iterations;
+    }
+    return true;
+}
+
+Object* WorldFuzz::find(kairos_object_id id) {
+    for (Object& o : live_)
+        if (o.id == id) return &o;
+    return nullptr;
+}
+
+kairos_object_id WorldFuzz::choose_id(Object** live_out) {
+    kairos_object_id id = 0;
+    switch (in_.pick(8)) {
+        case 5:
+            if (!removed_.empty()) id = removed_[in_.pick(static_cast<unsigned>(std::min<size_t>(removed_.size(), 256)))];
+            break;
+        case 6:
+            id = in_.pick(2) == 0 ? 0 : in_.u64();
+            break;
+        case 7:
+            if (!live_.empty()) {
+                const kairos_object_id base = live_[in_.pick(static_cast<unsigned>(live_.size()))].id;
+                static const uint64_t deltas[4] = {uint64_t{1} << 32, ~uint64_t{0} << 32, 1, uint64_t{1} << 40};
+                id = base + deltas[in_.pick(4)];
+            }
+            break;
+        default:
+            if (!live_.empty()) id = live_[in_.pick(static_cast<unsigned>(live_.size()))].id;
+            break;
+    }
+    *live_out = find(id);
+    return id;
+}
+
+bool WorldFuzz::all_moderate() const {
+    for (const Object& o : live_) {
+        if (!o.model->moderate || !o.pose.valid || !o.pose.moderate) return false;
+        if (o.moving && (!o.end.valid || !o.end.moderate)) return false;
+    }
+    return true;
+}
+
+void WorldFuzz::add() {
+    if (live_.size() >= kMaxObjects || shapes_.empty()) return;
+    const Built& shape = shapes_[in_.pick(static_cast<unsigned>(shapes_.size()))];
+    const bool null_pose = in_.rare(8);
+    const PoseCase pose = null_pose ? PoseCase{} : make_pose(in_);
+    const unsigned null_probe = in_.rare(32) ? 1 + in_.pick(2) : 0;  // 1: shape, 2: out
+    const uint64_t user = next_user_++;
+    kairos_object_id out;
+    poison(out);
+    const int32_t status = observe("kairos_world_add", [&] {
+        return kairos_world_add(world_, null_probe == 1 ? nullptr : shape.shape.get(), null_pose ? nullptr : &pose.pose,
+                                user, null_probe == 2 ? nullptr : &out);
+    });
+    Verdict v;
+    if (null_probe != 0) v.require(KAIROS_ERROR_NULL_ARGUMENT);
+    expect_pose(pose, v);
+    if (!shape.model->moderate) v.unsure();
+    v.check(status, "kairos_world_add");
+    if (status != KAIROS_OK) {
+        if (!poisoned(out)) violation("kairos_world_add failed but wrote *out");
+        return;
+    }
+    if (out == 0) violation("kairos_world_add returned id 0");
+    if (!issued_.insert(out).second) violation("kairos_world_add returned id %llu a second time", static_cast<unsigned long long>(out));
+    Object o;
+    o.id = out;
+    o.user = user;
+    o.model = shape.model;
+    o.pose = pose;
+    live_.push_back(o);
+}
+
+void WorldFuzz::remove() {
+    Object* o;
+    const kairos_object_id id = choose_id(&o);
+    const int32_t status = observe("kairos_world_remove", [&] { return kairos_world_remove(world_, id); });
+    Verdict v;
+    if (o == nullptr) v.require(KAIROS_ERROR_STALE_ID);
+    v.check(status, "kairos_world_remove");
+    if (status != KAIROS_OK) return;
+    removed_.push_back(id);
+    live_.erase(live_.begin() + (o - live_.data()));
+}
+
+void WorldFuzz::set_pose(bool as_move) {
+    Object* o;
+    const kairos_object_id id = choose_id(&o);
+    const kairos_pose from = o != nullptr ? o->pose.pose : kairos_pose{{0, 0, 0}, {0, 0, 0, 1}};
+    const PoseCase pose = as_move ? make_pose_near(in_, from) : make_pose(in_);
+    const bool null_pose = in_.rare(32);
+    const char* fn = as_move ? "kairos_world_move" : "kairos_world_set_pose";
+    const int32_t status = observe(fn, [&] {
+        const kairos_pose* p = null_pose ? nullptr : &pose.pose;
+        return as_move ? kairos_world_move(world_, id, p) : kairos_world_set_pose(world_, id, p);
+    });
+    // Which of several bad arguments is reported first is not part of the contract.
+    Verdict v;
+    if (o == nullptr) v.require(KAIROS_ERROR_STALE_ID);
+    if (null_pose) v.require(KAIROS_ERROR_NULL_ARGUMENT);
+    else if (pose.invalid) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    if (!v.expects_error()) {
+        expect_pose(pose, v);
+        if (!o->model->moderate) v.unsure();
+    }
+    v.check(status, fn);
+    if (status != KAIROS_OK) return;
+    if (as_move) {
+        o->end = pose;
+        o->moving = true;
+    } else {
+        o->pose = pose;
+        o->moving = false;
+    }
+}
+
+bool WorldFuzz::step() {
+    const int32_t status = observe("kairos_world_step", [&] { return kairos_world_step(world_); });
+    Verdict v;
+    if (!all_moderate()) v.unsure();
+    v.check(status, "kairos_world_step");
+    if (status != KAIROS_OK) return false;
+    stepped_ = true;
+    step_objects_ = live_;
+    for (Object& o : step_objects_)
+        if (!o.moving) o.end = o.pose;
+    read_results(true);
+    for (Object& o : live_) {
+        if (o.moving) o.pose = o.end;
+        o.moving = false;
+    }
+    return true;
+}
+
+// Checks the contacts and overlaps of the last step (read again at any time: they stay valid
+// until the next call that changes the world, which read_results is only called before).
+void WorldFuzz::read_results(bool after_step) {
+    const kairos_contact* contacts;
+    size_t count;
+    poison(contacts);
+    poison(count);
+    int32_t status = observe("kairos_world_contacts", [&] { return kairos_world_contacts(world_, &contacts, &count); });
+    Verdict v;
+    v.check(status, "kairos_world_contacts");
+    const kairos_object_id* pairs;
+    size_t pair_count;
+    status = observe("kairos_world_overlaps", [&] { return kairos_world_overlaps(world_, &pairs, &pair_count); });
+    v.check(status, "kairos_world_overlaps");
+    if (count > 0 && contacts == nullptr) violation("kairos_world_contacts: %zu contacts at NULL", count);
+    if (pair_count > 0 && pairs == nullptr) violation("kairos_world_overlaps: %zu pairs at NULL", pair_count);
+    if (!stepped_) {
+        if (count != 0 || pair_count != 0)
+            violation("%zu contacts and %zu overlaps before any successful step", count, pair_count);
+        return;
+    }
+    auto object_of = [&](kairos_object_id id) -> const Object* {
+        for (const Object& o : step_objects_)
+            if (o.id == id) return &o;
+        return nullptr;
+    };
+    std::set<std::pair<kairos_object_id, kairos_object_id>> overlaps;
+    for (size_t i = 0; i < pair_count; ++i) {
+        const kairos_object_id a = pairs[2 * i], b = pairs[2 * i + 1];
+        if (!(a < b)) violation("kairos_world_overlaps: pair %zu is (%llu, %llu), not smaller id first", i,
+                                static_cast<unsigned long long>(a), static_cast<unsigned long long>(b));
+        if (object_of(a) == nullptr || object_of(b) == nullptr)
+            violation("kairos_world_overlaps: pair %zu names an id that was not live during the step", i);
+        if (!overlaps.insert({a, b}).second) violation("kairos_world_overlaps: pair %zu listed twice", i);
+    }
+    const bool moderate_step = [&] {
+        for (const Object& o : step_objects_)
+            if (!o.model->moderate || !o.pose.moderate || !o.end.moderate) return false;
+        return true;
+    }();
+    std::set<std::pair<kairos_object_id, kairos_object_id>> touched;
+    for (size_t i = 0; i < count; ++i) {
+        const kairos_contact& c = contacts[i];
+        if (!(c.a < c.b)) violation("kairos_world_contacts: contact %zu has a %llu >= b %llu", i,
+                                    static_cast<unsigned long long>(c.a), static_cast<unsigned long long>(c.b));
+        const Object* oa = object_of(c.a);
+        const Object* ob = object_of(c.b);
+        if (oa == nullptr || ob == nullptr) violation("kairos_world_contacts: contact %zu names an id not in the step", i);
+        if (c.user_a != oa->user || c.user_b != ob->user)
+            violation("kairos_world_contacts: contact %zu carries user data %llu, %llu instead of %llu, %llu", i,
+                      static_cast<unsigned long long>(c.user_a), static_cast<unsigned long long>(c.user_b),
+                      static_cast<unsigned long long>(oa->user), static_cast<unsigned long long>(ob->user));
+        const bool all_finite = std::isfinite(c.toi) && finite(c.point) && finite(c.normal);
+        if (!all_finite) {
+            if (KAIROS_FUZZ_ALLOW_NONFINITE_ON_HUGE && !moderate_step) continue;
+            violation("kairos_world_contacts: contact %zu has a non-finite toi, point or normal", i);
+        }
+        if (!(c.toi >= 0 && c.toi <= 1)) violation("kairos_world_contacts: contact %zu toi %.17g outside [0, 1]", i, c.toi);
+        if (!(std::fabs(norm(to_real(c.normal)) - 1) < 1e-6L))
+            violation("kairos_world_contacts: contact %zu normal %s is not unit", i, show(c.normal));
+        if (i > 0) {
+            const kairos_contact& p = contacts[i - 1];
+            const bool ordered = p.toi < c.toi || (p.toi == c.toi && (p.a < c.a || (p.a == c.a && p.b < c.b)));
+            if (!ordered) violation("kairos_world_contacts: contacts %zu and %zu are out of order or repeat a pair", i - 1, i);
+        }
+        if (!touched.insert({c.a, c.b}).second) violation("kairos_world_contacts: pair of contact %zu listed twice", i);
+        if (overlaps.count({c.a, c.b}) == 0)
+            violation("kairos_world_contacts: contact %zu's pair is not among the broad-phase overlaps", i);
+    }
+    if (!after_step || !moderate_step) return;
+    // No missed contacts: the ball about each origin inside its shape turns with it, so when two
+    // such balls meet at some time t the pair touches by then.
+    for (size_t i = 0; i < step_objects_.size(); ++i)
+        for (size_t j = i + 1; j < step_objects_.size(); ++j) {
+            const Object &a = step_objects_[i], &b = step_objects_[j];
+            const real ra = inner_radius(*a.model), rb = inner_radius(*b.model);
+            if (ra < 0 || rb < 0) continue;
+            const real r = ra + rb;
+            const Vr p0 = to_real(b.pose.pose.position) - to_real(a.pose.pose.position);
+            const Vr p1 = to_real(b.end.pose.position) - to_real(a.end.pose.position);
+            const Vr dv = p1 - p0;
+            const real where = std::fmax(norm(to_real(a.pose.pose.position)), norm(to_real(b.pose.pose.position))) +
+                               norm(to_real(a.end.pose.position)) + norm(to_real(b.end.pose.position));
+            const real reach = r * (1 - 1e-6L) - 64 * ulp(where);
+            const real enter = first_within(p0, dv, reach);
+            if (enter < 0) continue;
+            const kairos_object_id lo = std::min(a.id, b.id), hi = std::max(a.id, b.id);
+            const kairos_contact* found = nullptr;
+            for (size_t k = 0; k < count; ++k)
+                if (contacts[k].a == lo && contacts[k].b == hi) found = &contacts[k];
+            if (found == nullptr)
+                violation("kairos_world_step: no contact for ids %llu and %llu, whose inner balls (radii sum %.17Lg) "
+                          "meet at t = %.17Lg (tolerance %g): A %s %s -> %s, B %s %s -> %s (%s broad-phase pair)",
+                          static_cast<unsigned long long>(a.id), static_cast<unsigned long long>(b.id), r, enter,
+                          tolerance_, describe(*a.model).c_str(), show(a.pose.pose), show(a.end.pose),
+                          describe(*b.model).c_str(), show(b.pose.pose), show(b.end.pose),
+                          overlaps.count({lo, hi}) ? "a" : "not a");
+            if (!(found->toi <= enter + tolerance_ + 1e-9L))
+                violation("kairos_world_step: contact of ids %llu and %llu at toi %.17g, but their inner balls meet at "
+                          "t = %.17Lg already (tolerance %g, max_iterations %u): A %s %s -> %s, B %s %s -> %s",
+                          static_cast<unsigned long long>(lo), static_cast<unsigned long long>(hi), found->toi, enter,
+                          tolerance_, max_iterations_, describe(*a.model).c_str(), show(a.pose.pose), show(a.end.pose),
+                          describe(*b.model).c_str(), show(b.pose.pose), show(b.end.pose));
+        }
+}
+
+void WorldFuzz::stats() {
+    struct {
+        kairos_step_stats s;
+        unsigned char tail[32];
+    } buf;
+    poison(buf);
+    kairos_step_stats_init(&buf.s);
+    Verdict v;
+    uint32_t size = sizeof(kairos_step_stats);
+    switch (in_.pick(4)) {
+        case 0: break;
+        case 1: size = 4 + in_.pick(static_cast<unsigned>(sizeof(kairos_step_stats) - 4)); break;
+        case 2: size = sizeof(kairos_step_stats) + in_.pick(33); break;
+        default:
+            size = in_.pick(4);
+            v.require(KAIROS_ERROR_STRUCT_SIZE);
+            break;
+    }
+    buf.s.struct_size = size;
+    const auto before = buf;
+    const int32_t status = observe("kairos_world_step_stats", [&] { return kairos_world_step_stats(world_, &buf.s); });
+    v.check(status, "kairos_world_step_stats");
+    if (status != KAIROS_OK) {
+        if (std::memcmp(&before, &buf, sizeof buf) != 0) violation("kairos_world_step_stats failed but wrote *out");
+        return;
+    }
+    if (buf.s.struct_size != size) violation("kairos_world_step_stats changed struct_size %u to %u", size, buf.s.struct_size);
+    const auto* a = reinterpret_cast<const unsigned char*>(&before);
+    const auto* b = reinterpret_cast<const unsigned char*>(&buf);
+    for (size_t i = std::min<size_t>(size, sizeof(kairos_step_stats)); i < sizeof buf; ++i)
+        if (a[i] != b[i]) violation("kairos_world_step_stats wrote byte %zu past struct_size %u", i, size);
+    if (size >= sizeof(kairos_step_stats)) {
+        const kairos_step_stats& s = buf.s;
+        if (!(std::isfinite(s.broad_phase_seconds) && s.broad_phase_seconds >= 0 &&
+              std::isfinite(s.narrow_phase_seconds) && s.narrow_phase_seconds >= 0))
+            violation("kairos_world_step_stats: times %g, %g", s.broad_phase_seconds, s.narrow_phase_seconds);
+        const kairos_object_id* pairs;
+        size_t pair_count;
+        if (kairos_world_overlaps(world_, &pairs, &pair_count) == KAIROS_OK && stepped_ &&
+            s.broad_phase_pairs != pair_count)
+            violation("kairos_world_step_stats: broad_phase_pairs %llu but kairos_world_overlaps lists %zu",
+                      static_cast<unsigned long long>(s.broad_phase_pairs), pair_count);
+    }
+}
+
+void WorldFuzz::null_arguments() {
+    Verdict null;
+    null.require(KAIROS_ERROR_NULL_ARGUMENT);
+    const kairos_contact* contacts;
+    size_t count;
+    kairos_object_id id;
+    kairos_step_stats stats;
+    kairos_step_stats_init(&stats);
+    const kairos_pose pose{{0, 0, 0}, {0, 0, 0, 1}};
+    int32_t status;
+    switch (in_.pick(8)) {
+        case 0:
+            status = observe("kairos_world_step", [&] { return kairos_world_step(nullptr); });
+            null.check(status, "kairos_world_step(NULL)");
+            break;
+        case 1:
+            status = observe("kairos_world_contacts", [&] { return kairos_world_contacts(nullptr, &contacts, &count); });
+            null.check(status, "kairos_world_contacts(NULL, ...)");
+            break;
+        case 2:
+            status = observe("kairos_world_contacts", [&] { return kairos_world_contacts(world_, nullptr, &count); });
+            null.check(status, "kairos_world_contacts(w, NULL, ...)");
+            break;
+        case 3: {
+            const kairos_object_id* pairs;
+            status = observe("kairos_world_overlaps", [&] { return kairos_world_overlaps(world_, &pairs, nullptr); });
+            null.check(status, "kairos_world_overlaps(w, pairs, NULL)");
+            break;
+        }
+        case 4:
+            status = observe("kairos_world_step_stats", [&] { return kairos_world_step_stats(world_, nullptr); });
+            null.check(status, "kairos_world_step_stats(w, NULL)");
+            break;
+        case 5:
+            status = observe("kairos_world_add", [&] {
+                return kairos_world_add(nullptr, shapes_.empty() ? nullptr : shapes_[0].shape.get(), &pose, 0, &id);
+            });
+            null.check(status, "kairos_world_add(NULL, ...)");
+            break;
+        case 6:
+            status = observe("kairos_world_remove", [&] { return kairos_world_remove(nullptr, 1); });
+            null.check(status, "kairos_world_remove(NULL, ...)");
+            break;
+        default:
+            status = observe("kairos_world_create", [&] { return kairos_world_create(nullptr, nullptr); });
+            null.check(status, "kairos_world_create(settings, NULL)");
+            break;
+    }
+}
+
+void WorldFuzz::run() {
+    if (!create()) return;
+    ShapeBuilder builder(in_, /*max_depth=*/1, /*thorough=*/false);
+    for (unsigned i = 0, n = 1 + in_.pick(3); i < n; ++i) shapes_.push_back(builder.build_or_sphere());
+    for (int op = 0; op < kMaxOperations && in_.remaining() > 0; ++op) {
+        switch (in_.pick(16)) {
+            case 0:
+            case 1:
+            case 2:
+            case 3: add(); break;
+            case 4: remove(); break;
+            case 5:
+            case 6: set_pose(false); break;
+            case 7:
+            case 8:
+            case 9:
+            case 10: set_pose(true); break;
+            case 11:
+                if (!step()) return;
+                break;
+            case 12:
+                // Every object moves a little (or not at all), then the step: many movers at once.
+                for (Object& o : live_) {
+                    const PoseCase end = make_pose_near(in_, o.pose.pose);
+                    const int32_t status =
+                        observe("kairos_world_move", [&] { return kairos_world_move(world_, o.id, &end.pose); });
+                    Verdict v;
+                    expect_pose(end, v);
+                    if (!o.model->moderate) v.unsure();
+                    v.check(status, "kairos_world_move");
+                    if (status == KAIROS_OK) {
+                        o.end = end;
+                        o.moving = true;
+                    }
+                }
+                if (!step()) return;
+                break;
+            case 13: read_results(false); break;
+            case 14: stats(); break;
+            default:
+                if (in_.pick(2) == 0) null_arguments();
+                else shapes_.clear();  // the world's own references keep its shapes alive
+                break;
+        }
+    }
+    step();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    Input in(data, size);
+    WorldFuzz fuzz(in);
+    fuzz.run();
+    return 0;
+}
