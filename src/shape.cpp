@@ -1,4 +1,6 @@
 // Shape queries shared by every kind: bounds from support mappings.
+#include <cmath>
+
 #include "shape.hpp"
 
 namespace kairos {
@@ -8,8 +10,11 @@ void bounds(const Shape& s, const Pose& pose, Vec3& out_min, Vec3& out_max) {
     for (int axis = 0; axis < 3; ++axis) {
         Vec3 e{};
         e[axis] = 1;
-        out_max[axis] = support(s, pose, e)[axis];
-        out_min[axis] = support(s, pose, -e)[axis];
+        const double hi = support(s, pose, e)[axis], lo = support(s, pose, -e)[axis];
+        // Two separately rounded supports of a shape thinner than the rounding of its position
+        // (a flat triangle far from the origin) may cross: the box is the pair's hull.
+        out_max[axis] = std::fmax(hi, lo);
+        out_min[axis] = std::fmin(hi, lo);
     }
 }
 

@@ -121,6 +121,24 @@ TEST(Magnitudes, EveryQueryAtEveryScaleIsFinite) {
     EXPECT_GT(ok, 1000);  // within the limits every query answers
 }
 
+// Regression (fuzzer): a triangle 4e-4 thick moved 1e15 away, at a slightly turned pose: the z
+// range came back with min > max (two supports, each rounded at 1e15 with ulp 0.125).
+TEST(Magnitudes, BoundsOfAFlatShapeFarAwayAreOrdered) {
+    const kairos_vec3 corners[3] = {{1.7316338444847723, -72.489093712961605, 0.062259943263133145},
+                                    {30.486359147260803, 89.340274662267035, 0.062640718247545968},
+                                    {15.696015592689774, 10.428587958854427, 0.062455043690596505}};
+    const double linear[9] = {1, 0, 0, 0, 1, 1.5609979400320384e-16, 1.17647058823529e-16, 0, 1};
+    Owned triangle, moved;
+    ASSERT_EQ(kairos_shape_convex_hull(corners, 3, &triangle.s), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_transformed(triangle.s, linear, {1e15, 1e15, 1e15}, &moved.s), KAIROS_OK);
+    const kairos_pose pose = {{9.2941176470588236e-191, -3.5576409552147701e-191, 9.6078431372549014e-191}, {-0.0001, 0, 0, 1}};
+    kairos_vec3 lo, hi;
+    ASSERT_EQ(kairos_shape_bounds(moved.s, &pose, &lo, &hi), KAIROS_OK);
+    EXPECT_LE(lo.x, hi.x);
+    EXPECT_LE(lo.y, hi.y);
+    EXPECT_LE(lo.z, hi.z);
+}
+
 // ---- kairos_motion_cast: the gap at a reported hit ---------------------------------------------
 
 struct Q {

@@ -1,6 +1,7 @@
 // Fuzz target: pair queries (distance, intersect, ray, shape and motion casts) on two fuzz-built
 // shapes at fuzz poses, motions and settings, each result checked against the contract and
 // against the shapes' support-function models (separating planes bound every distance).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -68,6 +69,33 @@ bool inputs_moderate(const Posed& a, const Posed& b) {
     return a.model().moderate && b.model().moderate && a.pose.moderate && b.pose.moderate;
 }
 
+// Widest and median width (h(d) + h(-d)) of a shape over the test directions.
+void widths(const Model& m, real& out_widest, real& out_median) {
+    std::vector<real> w;
+    for (const Vr& d : unit_directions()) w.push_back(support_value(m, d) + support_value(m, -1 * d));
+    std::sort(w.begin(), w.end());
+    out_widest = w.back();
+    out_median = w[w.size() / 2];
+}
+
+// Whether GJK's accuracy is checked on this pair (the closest points, the symmetry, the bounds
+// from separating planes and inner balls, intersect against them): moderate magnitudes, no needle
+// (widest over median width at most 1e6: a flat triangle passes, a needle hull or a capsule 1e7
+// times longer than thick does not), sizes within 1e6 of each other and origins within 1e6 sizes.
+// Beyond that, accuracy at the rounding limit is issue 12's (a catalogue of where each method
+// fails, findings/ holds what these targets found there); the rest of the contract (statuses,
+// finite numbers, untouched outputs, ranges, unit vectors) is checked on every input.
+bool conditioned(const Posed& a, const Posed& b) {
+    if (!inputs_moderate(a, b)) return false;
+    real wa, ma, wb, mb;
+    widths(a.model(), wa, ma);
+    widths(b.model(), wb, mb);
+    if (!(wa <= 1e6L * ma) || !(wb <= 1e6L * mb)) return false;
+    if (!(wa <= 1e6L * wb) || !(wb <= 1e6L * wa)) return false;
+    const real apart = norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position));
+    return apart <= 1e6L * std::fmax(wa, wb);
+}
+
 // Non-finite numbers in a successful result are a violation, unless the build tolerates them
 // on inputs beyond the moderate range.
 bool finite_or_report(bool ok, bool moderate_inputs, const char* what) {
@@ -132,6 +160,7 @@ bool check_distance(const Posed& a, const Posed& b, const SettingsCase& s, const
     if (r.intersecting != 0 && r.intersecting != 1) violation("%s: intersecting is %d", what, r.intersecting);
     if (r.intersecting == 1 && r.distance != 0) violation("%s: intersecting with distance %.17g", what, r.distance);
     if (!unit(r.axis)) violation("%s: axis %s is not unit", what, show(r.axis));
+    if (!conditioned(a, b)) return true;
     const Placed pa = place(a.model(), a.pose.pose), pb = place(b.model(), b.pose.pose);
     const real size = pair_size(a, b);
     const real slack = pair_slack(a, b, size);
@@ -177,7 +206,7 @@ void query_distance(Input& in, const Posed& a, const Posed& b) {
     const DistanceCall ba = call_distance(b, a, s);
     if (ba.status != KAIROS_OK || !check_distance(b, a, s, ba.result)) return;
     if (ab.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS ||
-        ba.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS)
+        ba.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS || !conditioned(a, b))
         return;
     // Symmetric within the requested relative accuracy (the estimate may exceed the true
     // distance by tolerance / (1 - tolerance) of it) and 1e-6 of the size.
@@ -223,6 +252,8 @@ void query_intersect(Input& in, const Posed& a, const Posed& b) {
         return;
     }
     if (out != 0 && out != 1) violation("kairos_intersect: *out is %d", out);
+    if (out == 0 && use_cache && !finite_or_report(finite(cache), inputs_moderate(a, b), "kairos_intersect")) return;
+    if (!conditioned(a, b)) return;
     const Placed pa = place(a.model(), a.pose.pose), pb = place(b.model(), b.pose.pose);
     const real size = pair_size(a, b);
     const real slack = pair_slack(a, b, size);

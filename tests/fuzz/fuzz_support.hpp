@@ -15,7 +15,7 @@
 // Until convex hulls of flat and tiny point sets are built (C_API.md "Version 0.2 additions"),
 // KAIROS_ERROR_DEGENERATE is accepted for every hull; with 0 it is accepted for count 0 only.
 #ifndef KAIROS_FUZZ_ALLOW_DEGENERATE_HULL
-#define KAIROS_FUZZ_ALLOW_DEGENERATE_HULL 1
+#define KAIROS_FUZZ_ALLOW_DEGENERATE_HULL 0
 #endif
 
 // With 1, a successful call on inputs beyond the moderate range (magnitudes above
