@@ -12,8 +12,8 @@
 
 #include "kairos/kairos.h"
 
-// Until convex hulls of flat and tiny point sets are built (C_API.md "Version 0.2 additions"),
-// KAIROS_ERROR_DEGENERATE is accepted for every hull; with 0 it is accepted for count 0 only.
+// Hulls of every non-empty finite set are shapes (C_API.md "Version 0.2 additions"), so with 0
+// KAIROS_ERROR_DEGENERATE is accepted for count 0 only; 1 accepts it for every hull.
 #ifndef KAIROS_FUZZ_ALLOW_DEGENERATE_HULL
 #define KAIROS_FUZZ_ALLOW_DEGENERATE_HULL 0
 #endif
