@@ -214,13 +214,16 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
     DistanceResult r;
     r.iterations = l.iterations;
     r.termination = l.termination;
-    r.intersecting = l.intersecting;
     // Axis from A toward B: -v (v = a - b). Without a usable v (intersecting at the origin), the
     // direction between the local origins, or +x.
     const double core = std::sqrt(l.core_norm_sq);
     const Vec3 n = unit_or(-l.v, l.core_norm_sq, center_offset);
     Vec3 pa = l.point_a, pb = l.point_b;
-    if (l.intersecting) {
+    // Cores within the sum of the radii overlap, whichever rule ended the loop (a stop on no
+    // progress, with the squared comparison a rounding short of it, reported distance 0 with two
+    // witness points apart; found by fuzzing).
+    r.intersecting = l.intersecting || !(core > radius_a + radius_b);
+    if (r.intersecting) {
         r.distance = 0;
         // One contact point, inside both shapes: on the cores' closest points moved onto the overlap,
         // the point between them that splits their gap in the ratio of the radii.
@@ -228,7 +231,6 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
         pb = pa;
     } else {
         r.distance = core - (radius_a + radius_b);
-        if (!(r.distance > 0)) r.distance = 0;
         pa = pa + radius_a * n;
         pb = pb - radius_b * n;
     }

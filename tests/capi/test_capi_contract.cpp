@@ -139,6 +139,27 @@ TEST(Magnitudes, BoundsOfAFlatShapeFarAwayAreOrdered) {
     EXPECT_LE(lo.z, hi.z);
 }
 
+// Regression (fuzzer): a rounded hull (hull + sphere) around a sphere's centre: GJK stopped on no
+// progress with the cores a rounding inside the sum of the radii, and reported distance 0, not
+// intersecting, with witness points 0.26 apart. Distance 0 now means intersecting with one point.
+TEST(DistanceContract, ZeroDistanceIsAnIntersectionWithOnePoint) {
+    const kairos_vec3 p[5] = {{-1, -2, -2}, {-2, -2, -1}, {-1, -2, 0}, {-2, -2, -2}, {-2, 0, -2}};
+    Owned hull, ball, rounded;
+    ASSERT_EQ(kairos_shape_convex_hull(p, 5, &hull.s), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_sphere(1, &ball.s), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_minkowski_sum(hull.s, ball.s, &rounded.s), KAIROS_OK);
+    const kairos_pose pose = at(-4, -4, -4);
+    for (int order = 0; order < 2; ++order) {
+        kairos_distance_result r;
+        ASSERT_EQ(order == 0 ? kairos_distance(rounded.s, &pose, ball.s, &pose, nullptr, &r)
+                             : kairos_distance(ball.s, &pose, rounded.s, &pose, nullptr, &r),
+                  KAIROS_OK);
+        EXPECT_EQ(r.distance, 0) << "order " << order;
+        EXPECT_EQ(r.intersecting, 1) << "order " << order;
+        EXPECT_EQ(std::memcmp(&r.point_a, &r.point_b, sizeof r.point_a), 0) << "order " << order;
+    }
+}
+
 // ---- kairos_motion_cast: the gap at a reported hit ---------------------------------------------
 
 struct Q {
