@@ -267,7 +267,11 @@ KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* po
  * -translation (unit), or for a zero translation the unit direction from the shape's local origin
  * toward the ray's origin (+z when they coincide). No hit: hit 0, toi 1, point and normal
  * unspecified. On curved shapes (cylinders, cones) the double-precision iteration may stop short of
- * the surface by up to about 5e-8 of their size whatever tighter tolerance is asked: early, never late. */
+ * the surface by up to about 5e-8 of their size whatever tighter tolerance is asked: early, never late.
+ * When max_iterations ends the iteration first (termination KAIROS_TERMINATION_MAX_ITERATIONS),
+ * the result is a hit at the lower bound reached so far: no contact before toi, but the ray may
+ * still be apart from the shape there, or miss it (point unspecified); raise max_iterations.
+ * kairos_shape_cast does the same. */
 KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pose,
                                    kairos_vec3 origin, kairos_vec3 translation,
                                    const kairos_query_settings* settings, kairos_cast_result* out);
