@@ -345,10 +345,14 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
 
 // The normal of the latest clipping plane. With a radius the final v (x minus the core's closest
 // point, about the radius long) is the normal of the rounded shape's support plane through the
-// contact, exact to the tolerance, while the last clip may be an iteration older; it is used then.
+// contact, exact to the tolerance, while the last clip may be an iteration older; it is used then,
+// unless the iteration guard stopped the cast short of contact: there v need not oppose the
+// motion, while a clipping plane's normal always does (found by fuzzing).
 Vec3 contact_normal(const LocalCast& l, double margin, Vec3 fallback) {
     if (!l.clipped) return fallback;
-    if (margin > 0 && dot(l.v, l.v) > 0.25 * margin * margin && dot(l.v, l.normal) > 0) return normalized_or(l.v, fallback);
+    if (margin > 0 && l.termination != Termination::MaxIterations && dot(l.v, l.v) > 0.25 * margin * margin &&
+        dot(l.v, l.normal) > 0)
+        return normalized_or(l.v, fallback);
     return normalized_or(l.normal, fallback);
 }
 

@@ -160,6 +160,24 @@ TEST(DistanceContract, ZeroDistanceIsAnIntersectionWithOnePoint) {
     }
 }
 
+// Regression (fuzzer): two spheres, the cast stopped by max_iterations = 2 short of contact
+// reported a normal along the last search direction, not opposing the relative motion.
+TEST(CastContract, GuardStoppedHitStillOpposesTheMotion) {
+    Owned ball;
+    ASSERT_EQ(kairos_shape_sphere(1, &ball.s), KAIROS_OK);
+    const kairos_pose pa = {{-3.456656748302434, -3.988891432059205, -0.031189440756847375}, {0, 1, 0, 0}}, pb = at(0, 0, 0);
+    const kairos_vec3 r{-2.4998855573357748, -9.9853513389791715, 2.5014114595254444};
+    kairos_query_settings q;
+    kairos_query_settings_init(&q);
+    for (uint32_t m = 1; m <= 8; ++m) {
+        q.max_iterations = m;
+        kairos_cast_result c;
+        ASSERT_EQ(kairos_shape_cast(ball.s, &pa, {0, 0, 0}, ball.s, &pb, r, &q, &c), KAIROS_OK);
+        if (!c.hit) continue;
+        EXPECT_LT(c.normal.x * r.x + c.normal.y * r.y + c.normal.z * r.z, 0) << "max_iterations " << m;
+    }
+}
+
 // ---- kairos_motion_cast: the gap at a reported hit ---------------------------------------------
 
 struct Q {
