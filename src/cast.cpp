@@ -346,12 +346,12 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
 // The normal of the latest clipping plane. With a radius the final v (x minus the core's closest
 // point, about the radius long) is the normal of the rounded shape's support plane through the
 // contact, exact to the tolerance, while the last clip may be an iteration older; it is used then,
-// unless the iteration guard stopped the cast short of contact: there v need not oppose the
-// motion, while a clipping plane's normal always does (found by fuzzing).
-Vec3 contact_normal(const LocalCast& l, double margin, Vec3 fallback) {
+// unless it fails to oppose the motion r (a guard stop short of contact, or a coarse tolerance
+// stopping far from it): a clipping plane's normal always opposes r (found by fuzzing).
+Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, Vec3 fallback) {
     if (!l.clipped) return fallback;
     if (margin > 0 && l.termination != Termination::MaxIterations && dot(l.v, l.v) > 0.25 * margin * margin &&
-        dot(l.v, l.normal) > 0)
+        dot(l.v, l.normal) > 0 && dot(l.v, r) < 0)
         return normalized_or(l.v, fallback);
     return normalized_or(l.normal, fallback);
 }
@@ -390,7 +390,7 @@ CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 tran
     if (!l.hit) return out;
     // Start inside: -r, or from the shape's origin toward the ray's start, or world +z.
     const Vec3 fallback = normalized_or(-r, normalized_or(s, pose.to_local_direction({0, 0, 1})));
-    const Vec3 n = contact_normal(l, c.radius, fallback);
+    const Vec3 n = contact_normal(l, c.radius, r, fallback);
     // Point on the surface: the core's closest point pushed out by the radius along v.
     Vec3 p = l.point_a;
     if (c.radius > 0) p += c.radius * normalized_or(l.v, n);
@@ -420,7 +420,7 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
     if (!l.hit) return out;
     // Overlap at the start: -r, or from A's origin toward B's, or world +z.
     const Vec3 fallback = normalized_or(-r, normalized_or(t, pose_a.to_local_direction({0, 0, 1})));
-    const Vec3 n = contact_normal(l, margin, fallback);
+    const Vec3 n = contact_normal(l, margin, r, fallback);
     // Contact point: the cores' barycentric points pushed out by their radii along v (from A toward
     // B), each moved to its place at toi; they agree within the tolerance, the midpoint is taken.
     const Vec3 dir = margin > 0 ? normalized_or(l.v, n) : n;

@@ -160,8 +160,9 @@ TEST(DistanceContract, ZeroDistanceIsAnIntersectionWithOnePoint) {
     }
 }
 
-// Regression (fuzzer): two spheres, the cast stopped by max_iterations = 2 short of contact
-// reported a normal along the last search direction, not opposing the relative motion.
+// Regression (fuzzer): two spheres, the cast stopped by max_iterations = 2 short of contact, or by
+// tolerance 0.25 far from it, reported a normal along the last search direction, not opposing
+// the relative motion.
 TEST(CastContract, GuardStoppedHitStillOpposesTheMotion) {
     Owned ball;
     ASSERT_EQ(kairos_shape_sphere(1, &ball.s), KAIROS_OK);
@@ -175,6 +176,15 @@ TEST(CastContract, GuardStoppedHitStillOpposesTheMotion) {
         ASSERT_EQ(kairos_shape_cast(ball.s, &pa, {0, 0, 0}, ball.s, &pb, r, &q, &c), KAIROS_OK);
         if (!c.hit) continue;
         EXPECT_LT(c.normal.x * r.x + c.normal.y * r.y + c.normal.z * r.z, 0) << "max_iterations " << m;
+    }
+    // The same at coarse tolerances: the cast stops far from contact (0.25 stopped at toi 0.448).
+    q.max_iterations = 256;
+    for (double tol : {0.9, 0.5, 0.25, 0.1}) {
+        q.tolerance = tol;
+        kairos_cast_result c;
+        ASSERT_EQ(kairos_shape_cast(ball.s, &pa, {0, 0, 0}, ball.s, &pb, r, &q, &c), KAIROS_OK);
+        if (!c.hit) continue;
+        EXPECT_LT(c.normal.x * r.x + c.normal.y * r.y + c.normal.z * r.z, 0) << "tolerance " << tol;
     }
 }
 

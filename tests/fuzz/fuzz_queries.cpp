@@ -464,8 +464,10 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
     }
     // A contact opposes the relative motion.
     if (norm(rel) > 0 && !(dot(to_real(r.normal), rel) <= 1e-6L * norm(rel)))
-        violation("kairos_shape_cast: normal %s does not oppose the relative motion %s; %s", show(r.normal),
-                  show(minus(tb, ta)), scene(a, b));
+        violation("kairos_shape_cast: normal %s does not oppose the relative motion %s (toi %.17g, termination %d, "
+                  "tolerance %.17g, max_iterations %u); A moves %s; %s",
+                  show(r.normal), show(minus(tb, ta)), r.toi, r.termination, settings.use ? settings.settings.tolerance : 1e-10,
+                  settings.use ? settings.settings.max_iterations : 256u, show(ta), scene(a, b));
     // At toi: the point lies on both shapes, and the normal's plane still separates them (never late).
     Placed pa = pa0, pb = pb0;
     pa.position = pa0.position + real(r.toi) * to_real(ta);
