@@ -382,7 +382,7 @@ CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 tran
     const Vec3 s = pose.apply_inverse(origin);
     const Vec3 r = pose.to_local_direction(translation);
     const CoreOf c = classify(shape);
-    const LocalCast l = with_support(shape, c.core, [&](auto core) {
+    const LocalCast l = with_support(c, [&](auto core) {
         return cast_loop(SingleSupport<decltype(core)>{core}, c.radius, s, r, first_direction(r, s), tolerance,
                          max_iterations, policy);
     });
@@ -410,8 +410,8 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
     const Vec3 tb = pose_a.to_local_direction(translation_b);
     const Vec3 r = pose_a.to_local_direction(translation_b - translation_a);
     const double margin = ca.radius + cb.radius;
-    const LocalCast l = with_support(a, ca.core, [&](auto sa) {
-        return with_support(b, cb.core, [&](auto sb) {
+    const LocalCast l = with_support(ca, [&](auto sa) {
+        return with_support(cb, [&](auto sb) {
             return cast_loop(PairSupport<decltype(sa), decltype(sb)>{sa, sb, rot, t}, margin, Vec3{}, r,
                              first_direction(r, t), tolerance, max_iterations, policy);
         });

@@ -4,6 +4,7 @@
 #include "support_kernels.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 namespace kairos {
 namespace {
@@ -13,9 +14,11 @@ using namespace kernels;
 
 // ---- The distance loop -------------------------------------------------------------------------
 
+// In A's frame, at the caller's scale (the loop's own scale undone).
 struct LocalDistance {
-    double core_norm_sq;  // ||v||^2 of the final estimate (cores)
+    double core;  // ||v|| of the final estimate (cores)
     Vec3 v, point_a, point_b;
+    Vec3 unit;    // -v / ||v||, or zero when v is zero
     bool intersecting;
     uint32_t iterations;
     Termination termination;
@@ -30,10 +33,41 @@ inline bool below_lower_bound(double nv, double lower_sq, double w_norm_sq) {
     return d > 0 && d * d > 4 * lower_sq * (k * k * w_norm_sq);
 }
 
+// True when a stop on a rounding-limit rule (no progress, Johnson failed, repeated support) is the
+// answer: the gap between the upper bound ||v|| and the best lower bound is within the tolerance,
+// or within `floor` times the simplex's size: 2^-46 (64 eps) for polytope cores, whose support
+// points are exact, and 2^-40 (about 1e-12) when a core is curved or general, where the rounding
+// of v.w on rims (about 1e-11 of the size on cylinders) leaves nothing a restart could gain. A
+// larger gap means the simplex went bad by rounding while a nearer point is still to be found:
+// the loop recovers instead of stopping.
+inline bool settled(double vv, double lower_sq, double size_sq, double margin, double tolerance, double floor) {
+    const double upper = std::sqrt(vv);
+    const double gap = upper - std::sqrt(lower_sq);
+    return gap <= floor * std::sqrt(size_sq) || gap <= tolerance * (upper - margin);
+}
+
+// The floor of settled() for a pair support: exact supports (points, segments, boxes, small
+// hulls) on both sides, or not.
+template <class S>
+constexpr bool exact_support = !std::is_same_v<S, GenericSupport>;
+template <class Pair>
+constexpr double settle_floor = exact_support<decltype(Pair::sa)> && exact_support<decltype(Pair::sb)> ? 0x1p-46 : 0x1p-40;
+
+// Recoveries from a rounding-limit stop per query (each one either shrinks ||v|| by more than
+// rounding or restarts the simplex; the iteration guard bounds them too).
+constexpr int kRecoveries = 6;
+
 // margin: sum of the radii folded out of the shapes (0 for polytopes). The distance of the
 // rounded shapes is ||v|| - margin.
+//
+// The estimate never gets worse: a step whose new estimate is longer than the last one (Johnson's
+// determinants decided by rounding on a flat tetrahedron, a sliver, near-duplicate points) is
+// undone. When a rounding-limit rule fires far from the proven lower bound, the nearest point of
+// the hull of the last points is found by enumeration (Simplex::nearest_in_hull), and failing
+// that the simplex restarts from the best axis; the best estimate of every run is kept.
 template <class Pair>
-LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, uint32_t max_iterations) {
+LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance, uint32_t max_iterations) {
+    Pair pair = pair_in;  // its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;  // coordinates once, at the end
     // First direction: B lies roughly along t from A, so the closest points are near A's support
@@ -41,7 +75,7 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
     Vec3 v = -pair.t;
     if (!(dot(v, v) > 0)) v = {1, 0, 0};
     double vv = 0;  // ||v||^2 of the simplex's point, once there is one
-    const double margin_sq = margin * margin;
+    double margin_sq = margin * margin;
     // Squared lower bound on the cores' distance: max over iterations of (v.w)^2 / ||v||^2 with
     // v.w > 0 (every point x of A - B has v.x >= v.w). No point of A - B is closer to the origin,
     // so an estimate below it is a rounding artefact (see below).
@@ -49,14 +83,33 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
     // (its norm scales the rounding of v.w).
     double lower_num = 0, lower_den = 1;
     Vec3 lower_w{};
+    // The best estimate of a run ended by a restart (INFINITY: none yet).
+    Simplex best;
+    double best_vv = INFINITY;
+    int recoveries_left = kRecoveries;
 
     LocalDistance out{};
     out.termination = Termination::MaxIterations;
+    bool intersecting = false;
     uint32_t it = 0;
     while (it < max_iterations) {
         Vec3 a, b;
-        const Vec3 w = pair(-v, a, b);
+        Vec3 w = pair(-v, a, b);
+        if (it == 0) {
+            const double sc = pair_scale(a, b);
+            if (sc != 1) {
+                pair.scale = sc;
+                a = sc * a;
+                b = sc * b;
+                w = a - b;
+                v = sc * v;
+                margin *= sc;
+                margin_sq = margin * margin;
+            }
+        }
         ++it;
+        Termination stop = Termination::None;
+        unsigned pool = 0;  // the points the recovery may use
         if (s.bits != 0) {
             const double vw = dot(v, w);
             if (vw > 0 && vw * vw * lower_den > lower_num * vv) {
@@ -73,86 +126,124 @@ LocalDistance distance_loop(const Pair& pair, double margin, double tolerance, u
             }
             // Rule 5: w is a point seen before in this query: GJK would cycle.
             if (s.contains(w)) {
-                out.termination = Termination::RepeatedSupport;
-                break;
+                stop = Termination::RepeatedSupport;
+                pool = s.last_all;
             }
         }
-        const unsigned prev_bits = s.bits;
-        const Simplex::Outcome o = s.add(w, a, b, s.bits != 0 ? vv : INFINITY);
-        if (o == Simplex::Outcome::Full) {
-            out.termination = Termination::FullSimplex;
-            vv = 0;
+        if (stop == Termination::None) {
+            const unsigned prev_bits = s.bits;
+            const Simplex::Outcome o = s.add(w, a, b, prev_bits != 0 ? vv : INFINITY);
+            pool = s.last_all;
+            if (o == Simplex::Outcome::Full) {
+                out.termination = Termination::FullSimplex;
+                intersecting = true;
+                break;
+            }
+            if (o == Simplex::Outcome::Failed) {
+                stop = Termination::JohnsonFailed;  // s keeps the previous estimate
+            } else {
+                const double nv = dot(s.v, s.v);
+                if (prev_bits != 0 && nv * lower_den < lower_num &&
+                    below_lower_bound(nv, lower_num / lower_den, dot(lower_w, lower_w))) {
+                    // An estimate below the lower bound by more than the rounding of v.w cannot be
+                    // a point of A - B: Johnson's determinants accepted a sub-simplex they could
+                    // not resolve (a sliver triangle of support points a few ulps apart on a
+                    // curved surface, whose plane passes nearer the origin than any of its
+                    // points). The previous estimate is kept.
+                    s.restore(prev_bits);
+                    stop = Termination::JohnsonFailed;
+                } else if (nv <= gjk_detail::kNearContact * s.max_norm_sq()) {
+                    // Rule 2: v is within rounding of the origin relative to the simplex's size.
+                    out.termination = Termination::NearContact;
+                    intersecting = true;
+                    break;
+                } else if (nv <= margin_sq) {
+                    // Rounded shapes: the cores are within the sum of the radii, so they overlap.
+                    out.termination = Termination::FullSimplex;
+                    intersecting = true;
+                    break;
+                } else if (prev_bits != 0 && vv - nv <= gjk_detail::kNoProgress * vv) {
+                    // Rule 6: no progress. A longer estimate is rounding: the step is undone.
+                    if (nv > vv) s.restore(prev_bits);
+                    stop = Termination::NoProgress;
+                } else {
+                    vv = nv;
+                    v = s.v;
+                    continue;
+                }
+            }
+        }
+        // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv.
+        if (recoveries_left == 0 || settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>)) {
+            out.termination = stop;
             break;
         }
-        if (o == Simplex::Outcome::Failed) {
-            out.termination = Termination::JohnsonFailed;  // s keeps the previous estimate
-            break;
+        --recoveries_left;
+        if (s.nearest_in_hull(pool, vv * (1 - 64 * gjk_detail::kNoProgress), 0x1p-80)) {
+            vv = dot(s.v, s.v);
+            v = s.v;
+            if (vv <= gjk_detail::kNearContact * s.max_norm_sq() || vv <= margin_sq) {
+                out.termination = vv <= margin_sq ? Termination::FullSimplex : Termination::NearContact;
+                intersecting = true;
+                break;
+            }
+            continue;
         }
-        const double nv = dot(s.v, s.v);
-        // An estimate below the lower bound by more than the rounding of v.w cannot be a point of
-        // A - B: Johnson's determinants accepted a sub-simplex they could not resolve (a sliver
-        // triangle of support points a few ulps apart on a curved surface, whose plane passes
-        // nearer the origin than any of its points). Trusting it would end the query on rules 2
-        // or "cores within the radii" with shapes still apart. The previous estimate is kept.
-        if (nv * lower_den < lower_num && below_lower_bound(nv, lower_num / lower_den, dot(lower_w, lower_w))) {
-            s.restore(prev_bits);
-            out.termination = Termination::JohnsonFailed;
-            break;
+        // Restart from the best axis with an empty simplex (v stays).
+        if (vv < best_vv) {
+            best = s;
+            best_vv = vv;
         }
-        // Rule 2: v is within rounding of the origin relative to the simplex's size.
-        if (nv <= gjk_detail::kNearContact * s.max_norm_sq()) {
-            out.termination = Termination::NearContact;
-            vv = nv;
-            break;
-        }
-        // Rounded shapes: the cores are within the sum of the radii, so the shapes overlap.
-        if (nv <= margin_sq) {
-            out.termination = Termination::FullSimplex;
-            vv = nv;
-            break;
-        }
-        // Rule 6: no progress. The new estimate is kept only if it is not worse.
-        if (it > 1 && vv - nv <= gjk_detail::kNoProgress * vv) {
-            out.termination = Termination::NoProgress;
-            if (nv <= vv) vv = nv;
-            // A worse estimate was produced by rounding: s.v is still the point found, and it is
-            // within machine epsilon of the previous one.
-            break;
-        }
-        vv = nv;
-        v = s.v;
+        s.bits = 0;
+        s.last_all = 0;
     }
+    if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
     out.iterations = it;
-    out.v = s.v;
-    out.core_norm_sq = dot(s.v, s.v);
     s.update_lambda();
+    // Witness points from coordinates that do not reproduce v (a sliver whose projection is right
+    // and whose coordinates are not) would not be the distance apart: the nearest sub-simplex
+    // whose coordinates do is taken instead (a single point always qualifies). Coordinates a
+    // little below zero near an edge (clamped: the points move by up to 1e-9 of the size on
+    // curved rims) are not worth a farther sub-simplex: the test allows 2^-30 of the size.
+    if (!intersecting && !s.coordinates_reproduce_v(0x1p-60)) s.nearest_in_hull(s.bits, INFINITY, 0x1p-60);
+    const double nv = dot(s.v, s.v);
+    out.intersecting = intersecting || nv <= margin_sq;
+    out.unit = nv > 0 ? (-1 / std::sqrt(nv)) * s.v : Vec3{};
+    const double inv = 1 / pair.scale;
+    out.core = std::sqrt(nv) * inv;
+    out.v = inv * s.v;
     s.closest_points(out.point_a, out.point_b);
-    switch (out.termination) {
-        case Termination::FullSimplex:
-        case Termination::NearContact:
-            out.intersecting = true;
-            break;
-        default:
-            out.intersecting = out.core_norm_sq <= margin_sq;
-            break;
-    }
+    out.point_a = inv * out.point_a;
+    out.point_b = inv * out.point_b;
     return out;
 }
 
 // ---- The intersection loop ---------------------------------------------------------------------
 
 template <class Pair>
-bool intersect_loop(const Pair& pair, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
+bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
+    Pair pair = pair_in;  // its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;
     Vec3 v = io_v;
     double vv = 0;
-    const double margin_sq = margin * margin;
+    double margin_sq = margin * margin;
     uint32_t it = 0;
     bool result = true;
     while (it < max_iterations) {
         Vec3 a, b;
-        const Vec3 w = pair(-v, a, b);
+        Vec3 w = pair(-v, a, b);
+        if (it == 0) {
+            const double sc = pair_scale(a, b);
+            if (sc != 1) {
+                pair.scale = sc;
+                a = sc * a;
+                b = sc * b;
+                w = a - b;
+                margin *= sc;
+                margin_sq = margin * margin;
+            }
+        }
         ++it;
         const double vw = dot(v, w);
         // Separating axis: every point of A - B lies beyond the plane v.x = vw > margin * ||v||.
@@ -161,15 +252,36 @@ bool intersect_loop(const Pair& pair, double margin, Vec3& io_v, uint32_t max_it
             result = false;
             break;
         }
-        // w seen before, with vw <= 0: the closest point is within rounding of the origin.
-        if (s.bits != 0 && s.contains(w)) break;
-        const Simplex::Outcome o = s.add(w, a, b, s.bits != 0 ? vv : INFINITY);
-        if (o == Simplex::Outcome::Full || o == Simplex::Outcome::Failed) break;
-        const double nv = dot(s.v, s.v);
-        if (nv <= gjk_detail::kNearContact * s.max_norm_sq() || nv <= margin_sq) break;
-        if (s.bits != 0 && it > 1 && vv - nv <= gjk_detail::kNoProgress * vv) break;
-        vv = nv;
-        v = s.v;
+        // A rounding-limit rule (w seen before, no valid sub-simplex, no progress) says nothing
+        // about the verdict while v is far from the origin: the distance loop, with its
+        // recoveries, decides (rare).
+        bool rounding_stop = s.bits != 0 && s.contains(w);
+        if (!rounding_stop) {
+            const unsigned prev_bits = s.bits;
+            const Simplex::Outcome o = s.add(w, a, b, prev_bits != 0 ? vv : INFINITY);
+            if (o == Simplex::Outcome::Full) break;
+            if (o == Simplex::Outcome::Failed) {
+                rounding_stop = true;
+            } else {
+                const double nv = dot(s.v, s.v);
+                if (nv <= gjk_detail::kNearContact * s.max_norm_sq() || nv <= margin_sq) break;
+                if (prev_bits != 0 && vv - nv <= gjk_detail::kNoProgress * vv) {
+                    rounding_stop = true;
+                } else {
+                    vv = nv;
+                    v = s.v;
+                }
+            }
+        }
+        if (rounding_stop) {
+            const LocalDistance d = distance_loop(pair_in, margin / pair.scale, 1e-9, max_iterations);
+            it += d.iterations;
+            if (!d.intersecting) {
+                io_v = d.v;
+                result = false;
+            }
+            break;
+        }
     }
     out_iterations = it;
     return result;
@@ -183,8 +295,8 @@ auto with_pair(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& p
     const Mat3& r = frame.r;
     const Vec3 t = frame.t;
     const double margin = ca.radius + cb.radius;
-    return with_support(a, ca.core, [&](auto sa) {
-        return with_support(b, cb.core, [&](auto sb) {
+    return with_support(ca, [&](auto sa) {
+        return with_support(cb, [&](auto sb) {
             return fn(PairSupport<decltype(sa), decltype(sb)>{sa, sb, r, t}, margin);
         });
     });
@@ -216,8 +328,8 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
     r.termination = l.termination;
     // Axis from A toward B: -v (v = a - b). Without a usable v (intersecting at the origin), the
     // direction between the local origins, or +x.
-    const double core = std::sqrt(l.core_norm_sq);
-    const Vec3 n = unit_or(-l.v, l.core_norm_sq, center_offset);
+    const double core = l.core;
+    const Vec3 n = dot(l.unit, l.unit) > 0 ? l.unit : normalized_or(center_offset, {1, 0, 0});
     Vec3 pa = l.point_a, pb = l.point_b;
     // Cores within the sum of the radii overlap, whichever rule ended the loop (a stop on no
     // progress, with the squared comparison a rounding short of it, reported distance 0 with two

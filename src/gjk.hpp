@@ -174,6 +174,64 @@ struct Simplex {
         return best_s != 0;
     }
 
+    // The nearest point to the origin of the hull of the points in `all` (a subset of the slots
+    // written), found by enumeration, not by Johnson's determinants: over every proper subset, the
+    // origin projected on its affine hull with geometric coordinates, kept when the coordinates are
+    // non-negative and reproduce the projection within sqrt(rel_sq) of the size (a sliver's
+    // coordinates can be far off while its projection is right: a witness point 1e3 from where
+    // the distance says). The nearest kept one
+    // wins. True when it is nearer than bound_sq: v, lambda and bits then describe it, and
+    // last_all = all. Otherwise nothing changes. The slow path of the rounding limit only.
+    bool nearest_in_hull(unsigned all, double bound_sq, double rel_sq) {
+        const unsigned keep_bits = bits, keep_last = last_all;
+        const Vec3 keep_v = v;
+        double keep_lambda[4];
+        for (int i = 0; i < 4; ++i) keep_lambda[i] = lambda[i];
+        const bool keep_want = want_lambda;
+        want_lambda = true;
+        double best = bound_sq;
+        unsigned best_s = 0;
+        for (unsigned sub = 1; sub < 15u; ++sub) {
+            if ((sub & ~all) != 0) continue;
+            set_from_subset(sub);
+            const double n2 = dot(v, v);
+            if (n2 < best && coordinates_reproduce_v(rel_sq)) {
+                best = n2;
+                best_s = sub;
+            }
+        }
+        if (best_s != 0) {
+            set_from_subset(best_s);
+            want_lambda = keep_want;
+            last_all = all;
+            return true;
+        }
+        want_lambda = keep_want;
+        bits = keep_bits;
+        last_all = keep_last;
+        v = keep_v;
+        for (int i = 0; i < 4; ++i) lambda[i] = keep_lambda[i];
+        return false;
+    }
+
+    // True when the witness points of lambda reproduce v: the point of the coordinates clamped to
+    // >= 0 and normalised (as closest_points takes them) lies within sqrt(rel_sq) of the
+    // simplex's size from v.
+    bool coordinates_reproduce_v(double rel_sq) const {
+        Vec3 p{};
+        double m = 0, sum = 0;
+        for (unsigned r = bits; r; r &= r - 1) {
+            const int i = std::countr_zero(r);
+            const double l = lambda[i] > 0 ? lambda[i] : 0;
+            p += l * y[i];
+            sum += l;
+            m = norm_sq[i] > m ? norm_sq[i] : m;
+        }
+        if (!(sum > 0)) return false;
+        const Vec3 d = (1 / sum) * p - v;
+        return dot(d, d) <= rel_sq * m;
+    }
+
     double max_norm_sq() const {
         double m = 0;
         for (unsigned r = bits; r; r &= r - 1) {

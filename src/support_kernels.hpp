@@ -73,47 +73,85 @@ struct PairSupport {
     SB sb;
     Mat3 r;
     Vec3 t;
-    // w = s_A(d) - s_B(-d); also returns the two support points (B's in A's frame).
+    // A power of two every point is multiplied by (exact): GJK on shapes 1e-160 or 1e99 in size
+    // runs at unit scale, where its squares and determinants (up to sixth powers of the size)
+    // neither underflow nor overflow. 1 for shapes of ordinary size.
+    double scale = 1;
+    // w = s_A(d) - s_B(-d); also returns the two support points (B's in A's frame, times scale).
     Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
-        out_a = sa(d);
-        out_b = r * sb(mul_transpose(r, -d)) + t;
+        out_a = scale * sa(d);
+        out_b = scale * (r * sb(mul_transpose(r, -d)) + t);
         return out_a - out_b;
     }
 };
 
+// The scale for a pair whose first support points are a and b: 1 while their largest coordinate
+// is within 2^+-100 of 1, else the power of two that brings it to about 1.
+inline double pair_scale(Vec3 a, Vec3 b) {
+    const double m = std::fmax(std::fmax(std::fmax(std::fabs(a.x), std::fabs(a.y)), std::fmax(std::fabs(a.z), std::fabs(b.x))),
+                               std::fmax(std::fabs(b.y), std::fabs(b.z)));
+    if (!(m > 0) || !std::isfinite(m) || (m >= 0x1p-100 && m <= 0x1p100)) return 1;
+    int e = -std::ilogb(m);
+    e = e > 1000 ? 1000 : (e < -1000 ? -1000 : e);
+    return std::ldexp(1.0, e);
+}
+
 
 enum class Core { Point, Segment, Box, SmallHull, Generic };
 
+// A shape as a core plus a radius: `shape` is the core's shape (the shape itself, or the operand
+// of a Minkowski sum with a sphere), `core` how to take its support.
 struct CoreOf {
     Core core;
     double radius;
+    const Shape* shape;
 };
 
 inline CoreOf classify(const Shape& s) {
     switch (s.kind()) {
         case ShapeKind::Point:
-            return {Core::Point, 0};
+            return {Core::Point, 0, &s};
         case ShapeKind::Sphere:
-            return {Core::Point, static_cast<const SphereShape&>(s).radius};
+            return {Core::Point, static_cast<const SphereShape&>(s).radius, &s};
         case ShapeKind::Segment:
-            return {Core::Segment, 0};
+            return {Core::Segment, 0, &s};
         case ShapeKind::Capsule:
-            return {Core::Segment, static_cast<const CapsuleShape&>(s).radius};
+            return {Core::Segment, static_cast<const CapsuleShape&>(s).radius, &s};
         case ShapeKind::Box:
-            return {Core::Box, 0};
+            return {Core::Box, 0, &s};
         case ShapeKind::ConvexHull: {
             const auto& h = static_cast<const ConvexHullShape&>(s);
-            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0};
-            return {Core::Generic, 0};
+            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0, &s};
+            return {Core::Generic, 0, &s};
+        }
+        case ShapeKind::MinkowskiSum: {
+            // Anything grown by a sphere is its core plus the radius, as spheres and capsules are:
+            // GJK then converges on the core (a rounded box's corner is a point, not a sphere
+            // patch that needs many iterations). Nested sums add their radii.
+            const auto& m = static_cast<const MinkowskiSumShape&>(s);
+            const Shape* other = nullptr;
+            double r = 0;
+            if (m.b->kind() == ShapeKind::Sphere) {
+                other = m.a;
+                r = static_cast<const SphereShape*>(m.b)->radius;
+            } else if (m.a->kind() == ShapeKind::Sphere) {
+                other = m.b;
+                r = static_cast<const SphereShape*>(m.a)->radius;
+            }
+            if (other == nullptr) return {Core::Generic, 0, &s};
+            CoreOf c = classify(*other);
+            c.radius += r;
+            return c;
         }
         default:
-            return {Core::Generic, 0};
+            return {Core::Generic, 0, &s};
     }
 }
 
 template <class Fn>
-auto with_support(const Shape& s, Core c, Fn&& fn) {
-    switch (c) {
+auto with_support(const CoreOf& c, Fn&& fn) {
+    const Shape& s = *c.shape;
+    switch (c.core) {
         case Core::Point:
             return fn(PointSupport{});
         case Core::Segment:
