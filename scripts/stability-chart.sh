@@ -17,7 +17,7 @@ status=0
 "$build/bench/bench_stability" "$results/stability.csv" || status=$?
 
 gnuplot <<GP
-set terminal pngcairo size 1700,900 font "DejaVu Sans,11"
+set terminal pngcairo size 1700,900 font "DejaVu Sans,11" noenhanced
 set output "$results/stability.png"
 set datafile separator ","
 set title "Stability catalogue: failure rate (%) by method and family (blank: not applicable; bounds in the README)" font ",14"
