@@ -35,15 +35,17 @@ inline bool below_lower_bound(double nv, double lower_sq, double w_norm_sq) {
 
 // True when a stop on a rounding-limit rule (no progress, Johnson failed, repeated support) is the
 // answer: the gap between the upper bound ||v|| and the best lower bound is within the tolerance,
-// or within `floor` times the simplex's size: 2^-46 (64 eps) for polytope cores, whose support
-// points are exact, and 2^-40 (about 1e-12) when a core is curved or general, where the rounding
-// of v.w on rims (about 1e-11 of the size on cylinders) leaves nothing a restart could gain. A
-// larger gap means the simplex went bad by rounding while a nearer point is still to be found:
-// the loop recovers instead of stopping.
+// or within what rounding allows the lower bound v.w / ||v||. v carries an absolute error of some
+// eps of the simplex's size S, which tilts it by that over ||v||, so along a face of A - B the
+// bound can fall short by eps S^2 / ||v|| however many iterations follow: the test is
+// gap ||v|| <= floor S^2, with floor 2^-46 (64 eps) for polytope cores, whose support points are
+// exact, and 2^-40 when a core is curved or general (the rounding of v.w on rims, about 1e-11 of
+// the size on cylinders). A larger gap means the simplex went bad by rounding while a nearer
+// point is still to be found: the loop recovers instead of stopping.
 inline bool settled(double vv, double lower_sq, double size_sq, double margin, double tolerance, double floor) {
     const double upper = std::sqrt(vv);
     const double gap = upper - std::sqrt(lower_sq);
-    return gap <= floor * std::sqrt(size_sq) || gap <= tolerance * (upper - margin);
+    return gap * upper <= floor * size_sq || gap <= tolerance * (upper - margin);
 }
 
 // The floor of settled() for a pair support: exact supports (points, segments, boxes, small
