@@ -4,6 +4,7 @@
 #include "support_kernels.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <type_traits>
 
 namespace kairos {
@@ -41,11 +42,13 @@ inline bool below_lower_bound(double nv, double lower_sq, double w_norm_sq) {
 // gap ||v|| <= floor S^2, with floor 2^-46 (64 eps) for polytope cores, whose support points are
 // exact, and 2^-40 when a core is curved or general (the rounding of v.w on rims, about 1e-11 of
 // the size on cylinders). A larger gap means the simplex went bad by rounding while a nearer
-// point is still to be found: the loop recovers instead of stopping.
+// point is still to be found: the loop recovers instead of stopping. The allowance never exceeds
+// 2^-30 (about 1e-9) of the size: near contact (||v|| small, lower bound 0) it would otherwise
+// accept any ||v|| up to sqrt(floor) S.
 inline bool settled(double vv, double lower_sq, double size_sq, double margin, double tolerance, double floor) {
     const double upper = std::sqrt(vv);
     const double gap = upper - std::sqrt(lower_sq);
-    return gap * upper <= floor * size_sq || gap <= tolerance * (upper - margin);
+    return (gap * upper <= floor * size_sq && gap * gap <= 0x1p-60 * size_sq) || gap <= tolerance * (upper - margin);
 }
 
 // The floor of settled() for a pair support: exact supports (points, segments, boxes, small
@@ -136,6 +139,9 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
             const unsigned prev_bits = s.bits;
             const Simplex::Outcome o = s.add(w, a, b, prev_bits != 0 ? vv : INFINITY);
             pool = s.last_all;
+#ifdef KAIROS_GJK_TRACE
+            std::fprintf(stderr, "it %u w (%.17g %.17g %.17g) vw %.6e vv %.6e -> o %d bits %x nv %.6e lower %.6e\n", it, w.x, w.y, w.z, dot(v, w), vv, int(o), s.bits, dot(s.v, s.v), lower_num / lower_den);
+#endif
             if (o == Simplex::Outcome::Full) {
                 out.termination = Termination::FullSimplex;
                 intersecting = true;
@@ -176,6 +182,9 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
             }
         }
         // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv.
+#ifdef KAIROS_GJK_TRACE
+        std::fprintf(stderr, "  stop %d vv %.6e lower %.6e size %.3e recoveries %d\n", int(stop), vv, lower_num / lower_den, s.max_norm_sq(), recoveries_left);
+#endif
         if (recoveries_left == 0 || settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>)) {
             out.termination = stop;
             break;
@@ -210,9 +219,13 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
     if (!intersecting && !s.coordinates_reproduce_v(0x1p-60)) s.nearest_in_hull(s.bits, INFINITY, 0x1p-60);
     const double nv = dot(s.v, s.v);
     out.intersecting = intersecting || nv <= margin_sq;
-    out.unit = nv > 0 ? (-1 / std::sqrt(nv)) * s.v : Vec3{};
+    // ||v|| and its direction without under- or overflow: a distance 1e-170 of the size squares to
+    // a subnormal even at unit scale.
+    const bool plain = nv > 1e-200 && nv < 1e200;
+    out.unit = plain ? (-1 / std::sqrt(nv)) * s.v : normalized_or(-s.v, Vec3{});
     const double inv = 1 / pair.scale;
-    out.core = std::sqrt(nv) * inv;
+    const double m = max_abs(s.v);
+    out.core = (plain ? std::sqrt(nv) : (m > 0 ? m * length(s.v / m) : 0.0)) * inv;
     out.v = inv * s.v;
     s.closest_points(out.point_a, out.point_b);
     out.point_a = inv * out.point_a;

@@ -246,16 +246,26 @@ std::string fmt(const char* f, double x, double y) {
 }
 
 // One query in one argument order, checked against the constructed gap g along n (from a to b).
-void check_pair(const Posed& a, const Posed& b, V n, double g, double size, const std::string& kinds, const std::string& what,
-                Tally& t) {
+// deep: the contact is not a graze (see the casts below); ray_origin: B's contact point, for a ray
+// cast onto A (null: no ray, as when A's contact point is B's support point, which may be a corner).
+void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool deep, const V* ray_origin, const std::string& kinds,
+                const std::string& what, Tally& t) {
     const bool exact = a.s->polytope && b.s->polytope;
     const double tol = (exact ? 1e-12 : 1e-9) * size, band = 1e-9 * size;
     kairos_pose pa = a.pose(), pb = b.pose();
     kairos_distance_result r{};
     ASSERT_EQ(kairos_distance(a.s->k.get(), &pa, b.s->k.get(), &pb, nullptr, &r), KAIROS_OK) << kairos_last_error();
     ++t.cases;
+    auto pose_text = [](const kairos_pose& p) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "p (%.17g, %.17g, %.17g) q (%.17g, %.17g, %.17g, %.17g)", p.position.x, p.position.y, p.position.z,
+                      p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w);
+        return std::string(buf);
+    };
     auto check = [&](bool ok, const std::string& name, const std::string& detail) {
-        if (!ok) t.fail(name + " " + kinds, what + ": " + detail + " (termination " + std::to_string(r.termination) + ")");
+        if (!ok)
+            t.fail(name + " " + kinds, what + ": " + detail + " (termination " + std::to_string(r.termination) + "); A at " + pose_text(pa) +
+                                           ", B at " + pose_text(pb));
     };
     check(std::isfinite(r.distance), "finite", "");
     const V qa = fromk(r.point_a), qb = fromk(r.point_b), axis = fromk(r.axis);
@@ -271,25 +281,45 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, cons
         // The axis is the direction of v, whose absolute rounding (some eps of the size) tilts it
         // by that over the distance: along faces the separation falls short by up to about
         // eps size^2 / distance (seen: 5.5e-11 at a distance of 0.013, box on a box tilted by
-        // 1e-12; 1.4e-9 of the size at 1e-2 of it, a point beside a flat hull tilted by 1e-9, not
-        // understood yet). The check is for gross errors: 1e-8 of the size beyond that allowance.
+        // 1e-12; 1.4e-9 of the size at 1e-2 of it, a point beside a flat hull tilted by 1e-9;
+        // 4.3e-4 at 1.3e-9, boxes tilted by 1e-3 after Johnson failed, v about 1000 eps of the
+        // size off). The check is for gross errors: 1e-8 of the size, plus 1e-12 size^2 /
+        // distance (4500 eps of the size on v).
         // Within the band (shapes touching within 1e-9 of the size) the axis is a rounding artefact.
         const double sep = -b.h(-axis) - a.h(axis);
-        const double tilt_allowance = 1e-8 * size + 1e-13 * size * size / std::max(r.distance, 1e-300);
+        const double tilt_allowance = 1e-8 * size + 1e-12 * size * size / std::max(r.distance, 1e-300);
         if (r.distance > band) check(sep >= r.distance - tol - tilt_allowance, "axis", fmt("distance %.17g separation %.17g", r.distance, sep));
         check(std::fabs(norm(qb - qa) - r.distance) <= tol, "witness-apart", fmt("distance %.17g apart %.17g", r.distance, norm(qb - qa)));
         check(near_shape(a, qa, axis, tol) && near_shape(b, qb, -axis, tol), "witness-on-shape", "");
         // Negative gaps need not overlap (flat shapes: a point 1e-12 below a triangle's corner is
         // 1e-12 away), so the value is checked from 0 up.
-        // Open (issue 12): a cylinder touching another shape (gap exactly 0) along its cap, its
-        // support points wander the rim and the iteration stops on no progress up to 8e-8 of the
-        // size away. Counted apart, and held to its present count below.
-        const bool cylinder_touching = g == 0 && (a.s->name == "cylinder" || b.s->name == "cylinder");
         if (g >= 0) {
-            check(std::fabs(r.distance - std::max(g, 0.0)) <= tol, cylinder_touching ? "open:cylinder-touching" : "distance",
+            check(std::fabs(r.distance - std::max(g, 0.0)) <= tol, "distance",
                   fmt("distance %.17g gap %.17g", r.distance, g) + " iterations " + std::to_string(r.iterations));
         }
         if (g > band) t.worst_rel = std::max(t.worst_rel, std::fabs(r.distance - g) / size);
+    }
+    // Casts from the constructed gap: B translated along -n by g + size / 2 first touches A after
+    // g exactly (the support planes are perpendicular to the motion and the two support points
+    // face each other), so toi = g / (g + size / 2); a ray from A's support point pushed out by g n
+    // (as B's support point is) hits A at the same toi. Never late (1e-9 of the step), never a
+    // miss; early by design within the tolerance's stop (1e-7 here flags only gross errors).
+    // Judged only where the contact is not a graze (`deep`: A's contact point has A's solid
+    // below it, so the motion goes on into overlap): a corner meeting a corner or an edge
+    // sliding along a face touches over an instant or an interval that rounding decides.
+    if (g >= 0 && deep) {
+        const double len = g + size / 2, truth = g / len;
+        const V ta{0, 0, 0}, tb = -len * n;
+        kairos_cast_result c{};
+        ASSERT_EQ(kairos_shape_cast(a.s->k.get(), &pa, kv(ta), b.s->k.get(), &pb, kv(tb), nullptr, &c), KAIROS_OK);
+        check(c.hit == 1, "shape-cast-miss", fmt("truth %.17g %.0g", truth, 0));
+        if (c.hit == 1) check(c.toi <= truth + 1e-9 && c.toi >= truth - 1e-7, "shape-cast-toi", fmt("toi %.17g truth %.17g", c.toi, truth));
+        if (ray_origin != nullptr) {
+            kairos_cast_result ray{};
+            ASSERT_EQ(kairos_ray_cast(a.s->k.get(), &pa, kv(*ray_origin), kv(tb), nullptr, &ray), KAIROS_OK);
+            check(ray.hit == 1, "ray-cast-miss", fmt("truth %.17g %.0g", truth, 0));
+            if (ray.hit == 1) check(ray.toi <= truth + 1e-9 && ray.toi >= truth - 1e-7, "ray-cast-toi", fmt("toi %.17g truth %.17g", ray.toi, truth));
+        }
     }
     // kairos_intersect agrees with the sign beyond the band.
     int32_t hit = -1;
@@ -304,11 +334,19 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, cons
     }
 }
 
-// B placed so that its support point toward -n is g n beyond A's support point toward n.
-Posed place_b(const Posed& a, const TShape& b, const Rot& rb, V n, double g) {
-    const V pa = a.support(n);
+// B placed so that its support point toward -n is g n beyond pa, a point of A on its support
+// plane toward n.
+Posed place_b(const V pa, const TShape& b, const Rot& rb, V n, double g) {
     const V qb = apply(rb, b.support(apply_t(rb, -n)));
     return {&b, rb, pa + g * n - qb};
+}
+
+// Solid shapes whose top point (0, 0, h(+z)) is a point of theirs with the solid below it: a
+// motion through a contact there goes on into overlap (a cast's first contact is not a graze).
+bool solid_top(const TShape& s) {
+    for (const char* name : {"box", "sphere", "capsule", "cylinder", "cone", "box+sphere", "hull of two"})
+        if (s.name == name) return true;
+    return false;
 }
 
 // ---- The reported cases, both orders -----------------------------------------------------------
@@ -434,7 +472,8 @@ TEST(GjkEdges, TinyAndHugeScalesGiveTheUnitScaleAnswer) {
 
 // ---- The sweep -----------------------------------------------------------------------------
 
-// Every pair of kinds, both orders, at gaps from -1e-2 to 1e-2 of the size down to +-1e-12 and 0,
+// Every pair of kinds, both orders, at gaps from -1e-2 to 1e-2 of the size down to +-1e-12 and 0
+// (distance, intersect, and from gaps >= 0 a shape cast and a ray cast),
 // with A's face normal as the direction and B tilted by 0, 1e-15 ... 1e-3 rad from the flipped
 // pose (nearly parallel faces where both have faces), and along random directions at random
 // poses. Scales 1 and 1e-4, 1e4.
@@ -469,14 +508,20 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
                         n = random_unit();
                     }
                     const Posed a{&kinds[i], ra, {0, 0, 0}};
+                    // Face to face on a solid top: the contact point is A's top point, not its
+                    // support point (a box's support ties go to a corner, and a corner on an edge
+                    // grazes).
+                    const bool deep = variant < 6 && solid_top(kinds[i]);
+                    const V pa = deep ? V{0, 0, kinds[i].support({0, 0, 1}).z} : a.support(n);
                     for (double gr : gaps) {
                         const double g = gr * size;
-                        const Posed b = place_b(a, kinds[j], rb, n, g);
+                        const Posed b = place_b(pa, kinds[j], rb, n, g);
                         const std::string what = kinds[i].name + "/" + kinds[j].name + " scale " + std::to_string(scale) + " variant " +
                                                  std::to_string(variant) + " gap " + std::to_string(gr) + " seed " + std::to_string(seed);
                         const std::string kinds_ab = kinds[i].name + "/" + kinds[j].name;
-                        check_pair(a, b, n, g, size, kinds_ab, what + " (a, b)", t);
-                        check_pair(b, a, -n, g, size, kinds_ab + " swapped", what + " (b, a)", t);
+                        const V contact_b = pa + g * n;
+                        check_pair(a, b, n, g, size, deep, &contact_b, kinds_ab, what + " (a, b)", t);
+                        check_pair(b, a, -n, g, size, deep, nullptr, kinds_ab + " swapped", what + " (b, a)", t);
                     }
                 }
             }
@@ -484,14 +529,12 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
     }
     std::printf("[sweep] %d queries: %d separated, %d intersecting; worst |distance - gap| / size %.3g\n", t.cases, t.separated,
                 t.intersecting, t.worst_rel);
-    int total = 0, open = 0;
+    int total = 0;
     for (const auto& [key, count] : t.failures) {
         std::printf("  FAIL %-40s %4d  first: %s\n", key.c_str(), count, t.first[key].c_str());
-        (key.rfind("open:", 0) == 0 ? open : total) += count;
+        total += count;
     }
     EXPECT_EQ(total, 0) << "failed checks (listed above)";
-    // The open class may only shrink (35 of the 4,368 cylinder queries at gap 0 when written).
-    EXPECT_LE(open, 35) << "more cylinder-touching distance failures than when the test was written";
     // Both verdicts occur in quantity (the negative gaps overlap).
     EXPECT_GT(t.intersecting, t.cases / 5);
     EXPECT_GT(t.separated, t.cases / 3);
