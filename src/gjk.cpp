@@ -4,7 +4,6 @@
 #include "support_kernels.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <type_traits>
 
 namespace kairos {
@@ -139,9 +138,6 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
             const unsigned prev_bits = s.bits;
             const Simplex::Outcome o = s.add(w, a, b, prev_bits != 0 ? vv : INFINITY);
             pool = s.last_all;
-#ifdef KAIROS_GJK_TRACE
-            std::fprintf(stderr, "it %u w (%.17g %.17g %.17g) vw %.6e vv %.6e -> o %d bits %x nv %.6e lower %.6e\n", it, w.x, w.y, w.z, dot(v, w), vv, int(o), s.bits, dot(s.v, s.v), lower_num / lower_den);
-#endif
             if (o == Simplex::Outcome::Full) {
                 out.termination = Termination::FullSimplex;
                 intersecting = true;
@@ -182,9 +178,6 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
             }
         }
         // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv.
-#ifdef KAIROS_GJK_TRACE
-        std::fprintf(stderr, "  stop %d vv %.6e lower %.6e size %.3e recoveries %d\n", int(stop), vv, lower_num / lower_den, s.max_norm_sq(), recoveries_left);
-#endif
         if (recoveries_left == 0 || settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>)) {
             out.termination = stop;
             break;
