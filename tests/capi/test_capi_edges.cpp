@@ -470,6 +470,29 @@ TEST(GjkEdges, TinyAndHugeScalesGiveTheUnitScaleAnswer) {
     }
 }
 
+// A distance whose square underflows at unit scale: a point 1e-170 beside a unit segment (the
+// axis came out 1.0000054 long on such a pair; found by fuzzing).
+TEST(GjkEdges, DistanceWhoseSquareUnderflows) {
+    kairos_shape *seg = nullptr, *pt = nullptr;
+    ASSERT_EQ(kairos_shape_segment(1, &seg), KAIROS_OK);
+    for (double d : {1e-150, 1e-160, 1e-170, 1e-300}) {
+        SCOPED_TRACE(testing::Message() << "gap " << d);
+        const kairos_vec3 p{d, 0, 0.5};
+        ASSERT_EQ(kairos_shape_convex_hull(&p, 1, &pt), KAIROS_OK);
+        const kairos_pose id{{0, 0, 0}, {0, 0, 0, 1}};
+        const Query q = both_orders(seg, id, pt, id);
+        // Far below rounding of the size: touching (distance 0) or the distance itself, either way
+        // with a unit axis.
+        for (const auto* r : {&q.ab, &q.ba}) {
+            if (r->intersecting == 0) EXPECT_NEAR(r->distance / d, 1, 1e-12);
+            else EXPECT_EQ(r->distance, 0);
+            EXPECT_NEAR(norm(fromk(r->axis)), 1, 1e-15);
+        }
+        kairos_shape_release(pt);
+    }
+    kairos_shape_release(seg);
+}
+
 // ---- The sweep -----------------------------------------------------------------------------
 
 // Every pair of kinds, both orders, at gaps from -1e-2 to 1e-2 of the size down to +-1e-12 and 0
