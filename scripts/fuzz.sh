@@ -10,6 +10,10 @@
 # build/fuzz/corpus-work/<target> (the committed corpus is only read). Prints the executions
 # of each run and exits non-zero when any target found a crash, leak, timeout or contract
 # violation, naming the saved input. Non-interactive: safe in CI.
+#
+# KAIROS_FUZZ_SEED=N fixes libFuzzer's random seed (-seed=N): the same build then replays the
+# same sequence of inputs, so a run is reproducible (CI sets it; a campaign leaves it unset and
+# explores a new sequence each time).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -40,6 +44,13 @@ cmake -S tests/fuzz -B "$build" -DCMAKE_CXX_COMPILER=clang++
 cmake --build "$build"
 
 targets=(fuzz_shapes fuzz_queries fuzz_world)
+seed_arg=()
+if [ -n "${KAIROS_FUZZ_SEED:-}" ]; then
+    case "$KAIROS_FUZZ_SEED" in
+        *[!0-9]*) echo "KAIROS_FUZZ_SEED must be a number" >&2; exit 2 ;;
+    esac
+    seed_arg=(-seed="$KAIROS_FUZZ_SEED")
+fi
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 mkdir -p "$build/logs"
@@ -58,7 +69,7 @@ for target in "${targets[@]}"; do
     status=0
     # The outer timeout only guards against libFuzzer itself not stopping.
     timeout --kill-after=30 $((seconds + 300)) "$build/$target" \
-        -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+        -max_total_time="$seconds" "${seed_arg[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
         -artifact_prefix="$artifacts/" "$work" >"$log" 2>&1 || status=$?
     runs=$(sed -n 's/^Done \([0-9]*\) runs.*/\1/p' "$log" | tail -n 1)
     [ -n "$runs" ] || runs=$(sed -n 's/^stat::number_of_executed_units: *\([0-9]*\).*/\1/p' "$log" | tail -n 1)

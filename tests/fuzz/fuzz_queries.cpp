@@ -541,7 +541,10 @@ void query_motion_cast(Input& in, const Posed& a, const Posed& b) {
     const real t = settings.tolerance;
     // A hit is a time at which the shapes are within tolerance * min(rA, rB) of each other.
     const real near = t * (a.model().magnitude + b.model().magnitude) + 1e-6L * size + pair_slack(a, b, size);
-    if (r.toi > 0 && r.termination != KAIROS_TERMINATION_HIT) return;  // a guard stopped the search
+    // A guard stopped the search (MAX_ITERATIONS, NO_PROGRESS): a hit before which there is no
+    // contact, but the shapes may be apart there (the header), at toi 0 too (max_iterations 1
+    // ends before the first advance; found by fuzzing).
+    if (r.termination != KAIROS_TERMINATION_HIT) return;
     kairos_quat qa, qb;
     Vr pa_at, pb_at;
     motion_at(ma, r.toi, qa, pa_at);
