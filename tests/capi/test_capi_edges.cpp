@@ -493,6 +493,89 @@ TEST(GjkEdges, DistanceWhoseSquareUnderflows) {
     kairos_shape_release(seg);
 }
 
+// The stability catalogue's rotation-near-pi case: a rod (box 1 x 0.05 x 0.05) turning by
+// pi - 1e-6 about a fixed axis passes 4e-8 from a ball. The motion cast ran out of its 4096
+// advancement steps near the closest approach and reported a hit; it must report the miss. The
+// closest approach is computed here: the ball's centre in the rod's frame at time t (the turn
+// q(t) = axis_angle(t angle) q_start, shortest arc), its distance to the box in closed form, minimised by
+// dense sampling and golden-section refinement.
+TEST(GjkEdges, MotionCastRodTurningByNearlyPiPastABall) {
+    const V half{1, 0.050000000000000003, 0.050000000000000003};
+    const double radius = 0.14870715125989725;
+    const V rod_at{0.44511733908081785, 1.5544975286573379, -0.17482169220176491};
+    const V ball_at{0.52068329082351861, 0.48163008675941299, -0.5818306903376157};
+    const double q0[4] = {0.4946859016427001, -0.36803314471923559, -0.54469162858198661, 0.56846151396266265};
+    const double q1[4] = {0.36803339206214059, 0.49468571762606595, -0.56846178630840605, -0.5446913443511614};
+    // q_rel = q1 * conj(q0), w >= 0.
+    auto mul = [](const double* p, const double* q, double* o) {
+        o[0] = p[3] * q[0] + p[0] * q[3] + p[1] * q[2] - p[2] * q[1];
+        o[1] = p[3] * q[1] - p[0] * q[2] + p[1] * q[3] + p[2] * q[0];
+        o[2] = p[3] * q[2] + p[0] * q[1] - p[1] * q[0] + p[2] * q[3];
+        o[3] = p[3] * q[3] - p[0] * q[0] - p[1] * q[1] - p[2] * q[2];
+    };
+    const double c0[4] = {-q0[0], -q0[1], -q0[2], q0[3]};
+    double rel[4];
+    mul(q1, c0, rel);
+    if (rel[3] < 0) for (double& x : rel) x = -x;
+    const double sv = std::sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]);
+    const double angle = 2 * std::atan2(sv, rel[3]);
+    const V axis{rel[0] / sv, rel[1] / sv, rel[2] / sv};
+    auto gap = [&](double t) {
+        const Rot turn = make_rot(axis, t * angle);
+        double q[4];
+        mul(turn.q, q0, q);
+        const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        Rot r = make_rot({0, 0, 1}, 0);
+        {  // the matrix of q / |q|
+            const double x = q[0] / n, y = q[1] / n, z = q[2] / n, w = q[3] / n;
+            r.m[0] = 1 - 2 * (y * y + z * z), r.m[1] = 2 * (x * y - z * w), r.m[2] = 2 * (x * z + y * w);
+            r.m[3] = 2 * (x * y + z * w), r.m[4] = 1 - 2 * (x * x + z * z), r.m[5] = 2 * (y * z - x * w);
+            r.m[6] = 2 * (x * z - y * w), r.m[7] = 2 * (y * z + x * w), r.m[8] = 1 - 2 * (x * x + y * y);
+        }
+        const V p = apply_t(r, ball_at - rod_at);
+        const V out{std::max(std::fabs(p.x) - half.x, 0.0), std::max(std::fabs(p.y) - half.y, 0.0), std::max(std::fabs(p.z) - half.z, 0.0)};
+        return norm(out) - radius;
+    };
+    double best = INFINITY, t_best = 0;
+    for (int i = 0; i <= 100000; ++i) {
+        const double t = i / 100000.0, g = gap(t);
+        if (g < best) best = g, t_best = t;
+    }
+    double lo = std::max(0.0, t_best - 1e-5), hi = std::min(1.0, t_best + 1e-5);
+    for (int i = 0; i < 200; ++i) {
+        const double m1 = lo + (hi - lo) * 0.381966, m2 = hi - (hi - lo) * 0.381966;
+        (gap(m1) < gap(m2) ? hi : lo) = gap(m1) < gap(m2) ? m2 : m1;
+    }
+    best = std::min(best, gap(0.5 * (lo + hi)));
+    ASSERT_GT(best, 1e-8) << "the configuration is a near miss";
+    ASSERT_LT(best, 1e-7);
+
+    kairos_shape *rod = nullptr, *ball = nullptr;
+    ASSERT_EQ(kairos_shape_box(kv(half), &rod), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_sphere(radius, &ball), KAIROS_OK);
+    const kairos_motion ma{{kv(rod_at), {q0[0], q0[1], q0[2], q0[3]}}, {kv(rod_at), {q1[0], q1[1], q1[2], q1[3]}}};
+    const kairos_motion mb{{kv(ball_at), {0, 0, 0, 1}}, {kv(ball_at), {0, 0, 0, 1}}};
+    for (double tol : {1e-12, 1e-10, 1e-6}) {
+        kairos_query_settings st;
+        kairos_query_settings_init(&st);
+        st.tolerance = tol;
+        kairos_cast_result ab{}, ba{};
+        ASSERT_EQ(kairos_motion_cast(rod, &ma, ball, &mb, &st, &ab), KAIROS_OK);
+        ASSERT_EQ(kairos_motion_cast(ball, &mb, rod, &ma, &st, &ba), KAIROS_OK);
+        // A hit within the tolerance's contact distance (tol * the ball's bounding radius) is allowed by the
+        // contract; the closest approach is 4e-8, beyond that for every tolerance here but 1e-6.
+        const bool may_hit = best <= tol * radius * std::sqrt(3.0);
+        if (!may_hit) {
+            EXPECT_EQ(ab.hit, 0) << "tolerance " << tol << " toi " << ab.toi << " termination " << ab.termination;
+            EXPECT_EQ(ba.hit, 0) << "tolerance " << tol << " toi " << ba.toi << " termination " << ba.termination;
+        }
+        EXPECT_NE(ab.termination, KAIROS_TERMINATION_MAX_ITERATIONS);
+        EXPECT_NE(ba.termination, KAIROS_TERMINATION_MAX_ITERATIONS);
+    }
+    kairos_shape_release(rod);
+    kairos_shape_release(ball);
+}
+
 // ---- The sweep -----------------------------------------------------------------------------
 
 // Every pair of kinds, both orders, at gaps from -1e-2 to 1e-2 of the size down to +-1e-12 and 0
