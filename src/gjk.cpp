@@ -70,8 +70,8 @@ constexpr int kRecoveries = 6;
 // the hull of the last points is found by enumeration (Simplex::nearest_in_hull), and failing
 // that the simplex restarts from the best axis; the best estimate of every run is kept.
 template <class Pair>
-LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance, uint32_t max_iterations) {
-    Pair pair = pair_in;  // its scale is set from the first support points
+LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations) {
+    // pair by value: its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;  // coordinates once, at the end
     // First direction: B lies roughly along t from A, so the closest points are near A's support
@@ -209,7 +209,10 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
     // whose coordinates do is taken instead (a single point always qualifies). Coordinates a
     // little below zero near an edge (clamped: the points move by up to 1e-9 of the size on
     // curved rims) are not worth a farther sub-simplex: the test allows 2^-30 of the size.
-    if (!intersecting && !s.coordinates_reproduce_v(0x1p-60)) s.nearest_in_hull(s.bits, INFINITY, 0x1p-60);
+    // (A point's coordinate is 1 and an edge's are 1 - t and t of v = y_i + t e: only triangles
+    // need the test.)
+    if (!intersecting && gjk_detail::kBitCount[s.bits] == 3 && !s.coordinates_reproduce_v(0x1p-60))
+        s.nearest_in_hull(s.bits, INFINITY, 0x1p-60);
     const double nv = dot(s.v, s.v);
     out.intersecting = intersecting || nv <= margin_sq;
     // ||v|| and its direction without under- or overflow: a distance 1e-170 of the size squares to
@@ -227,6 +230,12 @@ LocalDistance distance_loop(const Pair& pair_in, double margin, double tolerance
 }
 
 // ---- The intersection loop ---------------------------------------------------------------------
+
+// The distance loop as the intersection test's rare fallback, kept out of its hot path.
+template <class Pair>
+[[gnu::noinline, gnu::cold]] LocalDistance distance_fallback(const Pair& pair, double margin, uint32_t max_iterations) {
+    return distance_loop(pair, margin, 1e-9, max_iterations);
+}
 
 template <class Pair>
 bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
@@ -282,7 +291,7 @@ bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max
             }
         }
         if (rounding_stop) {
-            const LocalDistance d = distance_loop(pair_in, margin / pair.scale, 1e-9, max_iterations);
+            const LocalDistance d = distance_fallback(pair_in, margin / pair.scale, max_iterations);
             it += d.iterations;
             if (!d.intersecting) {
                 io_v = d.v;
@@ -297,8 +306,7 @@ bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max
 
 // Calls fn(pair_support, margin) with the pair's support of A - B in A's frame.
 template <class Fn>
-auto with_pair(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Fn&& fn) {
-    const CoreOf ca = classify(a), cb = classify(b);
+auto with_pair(const CoreOf& ca, const Pose& pose_a, const CoreOf& cb, const Pose& pose_b, Fn&& fn) {
     const RelativeFrame frame = relative_frame(pose_a, pose_b);
     const Mat3& r = frame.r;
     const Vec3 t = frame.t;
@@ -324,9 +332,10 @@ inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
 DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
                             uint32_t max_iterations) {
     if (max_iterations == 0) max_iterations = 1;
-    const double radius_a = classify(a).radius, radius_b = classify(b).radius;
+    const CoreOf ca = classify(a), cb = classify(b);
+    const double radius_a = ca.radius, radius_b = cb.radius;
     Vec3 center_offset;
-    const LocalDistance l = with_pair(a, pose_a, b, pose_b, [&](const auto& pair, double margin) {
+    const LocalDistance l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
         center_offset = pair.t;
         return distance_loop(pair, margin, tolerance, max_iterations);
     });
@@ -365,7 +374,7 @@ bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pos
     uint32_t it = 0;
     Vec3 v_local = -pose_a.to_local_direction(io_axis);
     const bool usable = is_finite(v_local) && dot(v_local, v_local) > 0 && std::isfinite(dot(v_local, v_local));
-    bool hit = with_pair(a, pose_a, b, pose_b, [&](const auto& pair, double margin) {
+    bool hit = with_pair(classify(a), pose_a, classify(b), pose_b, [&](const auto& pair, double margin) {
         if (!usable) {
             v_local = -pair.t;
             if (!(dot(v_local, v_local) > 0)) v_local = {1, 0, 0};

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 
 #include "math.hpp"
 #include "shape.hpp"
@@ -88,8 +89,9 @@ struct PairSupport {
 // The scale for a pair whose first support points are a and b: 1 while their largest coordinate
 // is within 2^+-100 of 1, else the power of two that brings it to about 1.
 inline double pair_scale(Vec3 a, Vec3 b) {
-    const double m = std::fmax(std::fmax(std::fmax(std::fabs(a.x), std::fabs(a.y)), std::fmax(std::fabs(a.z), std::fabs(b.x))),
-                               std::fmax(std::fabs(b.y), std::fabs(b.z)));
+    // Plain comparisons, not std::fmax (a library call here); a NaN coordinate is ignored.
+    double m = std::fabs(a.x);
+    for (const double c : {std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y), std::fabs(b.z)}) m = c > m ? c : m;
     if (!(m > 0) || !std::isfinite(m) || (m >= 0x1p-100 && m <= 0x1p100)) return 1;
     int e = -std::ilogb(m);
     e = e > 1000 ? 1000 : (e < -1000 ? -1000 : e);
@@ -106,6 +108,27 @@ struct CoreOf {
     double radius;
     const Shape* shape;
 };
+
+CoreOf classify(const Shape& s);
+
+// Anything grown by a sphere is its core plus the radius, as spheres and capsules are: GJK then
+// converges on the core (a rounded box's corner is a point, not a sphere patch that needs many
+// iterations). Nested sums add their radii. Out of line: classify() stays small and inlined.
+[[gnu::noinline]] inline CoreOf classify_sum(const MinkowskiSumShape& m) {
+    const Shape* other = nullptr;
+    double r = 0;
+    if (m.b->kind() == ShapeKind::Sphere) {
+        other = m.a;
+        r = static_cast<const SphereShape*>(m.b)->radius;
+    } else if (m.a->kind() == ShapeKind::Sphere) {
+        other = m.b;
+        r = static_cast<const SphereShape*>(m.a)->radius;
+    }
+    if (other == nullptr) return {Core::Generic, 0, &m};
+    CoreOf c = classify(*other);
+    c.radius += r;
+    return c;
+}
 
 inline CoreOf classify(const Shape& s) {
     switch (s.kind()) {
@@ -124,25 +147,8 @@ inline CoreOf classify(const Shape& s) {
             if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0, &s};
             return {Core::Generic, 0, &s};
         }
-        case ShapeKind::MinkowskiSum: {
-            // Anything grown by a sphere is its core plus the radius, as spheres and capsules are:
-            // GJK then converges on the core (a rounded box's corner is a point, not a sphere
-            // patch that needs many iterations). Nested sums add their radii.
-            const auto& m = static_cast<const MinkowskiSumShape&>(s);
-            const Shape* other = nullptr;
-            double r = 0;
-            if (m.b->kind() == ShapeKind::Sphere) {
-                other = m.a;
-                r = static_cast<const SphereShape*>(m.b)->radius;
-            } else if (m.a->kind() == ShapeKind::Sphere) {
-                other = m.b;
-                r = static_cast<const SphereShape*>(m.a)->radius;
-            }
-            if (other == nullptr) return {Core::Generic, 0, &s};
-            CoreOf c = classify(*other);
-            c.radius += r;
-            return c;
-        }
+        case ShapeKind::MinkowskiSum:
+            return classify_sum(static_cast<const MinkowskiSumShape&>(s));
         default:
             return {Core::Generic, 0, &s};
     }
