@@ -57,6 +57,21 @@ constexpr bool exact_support = !std::is_same_v<S, GenericSupport>;
 template <class Pair>
 constexpr double settle_floor = exact_support<decltype(Pair::sa)> && exact_support<decltype(Pair::sb)> ? 0x1p-46 : 0x1p-40;
 
+// After the first support call (unscaled): the pair's scale from its support points, and those
+// points, w and the margin brought to it (exact: a power of two). The search direction needs no
+// scaling.
+template <class Pair>
+inline void set_scale(Pair& pair, Vec3& a, Vec3& b, Vec3& w, double& margin, double& margin_sq) {
+    const double sc = pair_scale(a, b);
+    if (sc == 1) return;
+    pair.scale = sc;
+    a = sc * a;
+    b = sc * b;
+    w = a - b;
+    margin *= sc;
+    margin_sq = margin * margin;
+}
+
 // Recoveries from a rounding-limit stop per query (each one either shrinks ||v|| by more than
 // rounding or restarts the simplex; the iteration guard bounds them too).
 constexpr int kRecoveries = 6;
@@ -99,18 +114,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     while (it < max_iterations) {
         Vec3 a, b;
         Vec3 w = pair(-v, a, b);
-        if (it == 0) {
-            const double sc = pair_scale(a, b);
-            if (sc != 1) {
-                pair.scale = sc;
-                a = sc * a;
-                b = sc * b;
-                w = a - b;
-                v = sc * v;
-                margin *= sc;
-                margin_sq = margin * margin;
-            }
-        }
+        if (it == 0) set_scale(pair, a, b, w, margin, margin_sq);
         ++it;
         Termination stop = Termination::None;
         unsigned pool = 0;  // the points the recovery may use
@@ -250,17 +254,7 @@ bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max
     while (it < max_iterations) {
         Vec3 a, b;
         Vec3 w = pair(-v, a, b);
-        if (it == 0) {
-            const double sc = pair_scale(a, b);
-            if (sc != 1) {
-                pair.scale = sc;
-                a = sc * a;
-                b = sc * b;
-                w = a - b;
-                margin *= sc;
-                margin_sq = margin * margin;
-            }
-        }
+        if (it == 0) set_scale(pair, a, b, w, margin, margin_sq);
         ++it;
         const double vw = dot(v, w);
         // Separating axis: every point of A - B lies beyond the plane v.x = vw > margin * ||v||.
