@@ -242,8 +242,8 @@ template <class Pair>
 }
 
 template <class Pair>
-bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
-    Pair pair = pair_in;  // its scale is set from the first support points
+bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
+    // pair by value: its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;
     Vec3 v = io_v;
@@ -285,7 +285,9 @@ bool intersect_loop(const Pair& pair_in, double margin, Vec3& io_v, uint32_t max
             }
         }
         if (rounding_stop) {
-            const LocalDistance d = distance_fallback(pair_in, margin / pair.scale, max_iterations);
+            const double scale = pair.scale;
+            pair.scale = 1;  // the distance loop picks its own
+            const LocalDistance d = distance_fallback(pair, margin / scale, max_iterations);
             it += d.iterations;
             if (!d.intersecting) {
                 io_v = d.v;

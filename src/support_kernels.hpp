@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstddef>
-#include <initializer_list>
 
 #include "math.hpp"
 #include "shape.hpp"
@@ -79,9 +78,14 @@ struct PairSupport {
     // neither underflow nor overflow. 1 for shapes of ordinary size.
     double scale = 1;
     // w = s_A(d) - s_B(-d); also returns the two support points (B's in A's frame, times scale).
-    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
-        out_a = scale * sa(d);
-        out_b = scale * (r * sb(mul_transpose(r, -d)) + t);
+    [[gnu::always_inline]] Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
+        out_a = sa(d);
+        out_b = r * sb(mul_transpose(r, -d)) + t;
+        // A branch, not a multiply by 1: the product would sit on the loop's critical path.
+        if (scale != 1) [[unlikely]] {
+            out_a = scale * out_a;
+            out_b = scale * out_b;
+        }
         return out_a - out_b;
     }
 };
@@ -89,9 +93,9 @@ struct PairSupport {
 // The scale for a pair whose first support points are a and b: 1 while their largest coordinate
 // is within 2^+-100 of 1, else the power of two that brings it to about 1.
 inline double pair_scale(Vec3 a, Vec3 b) {
-    // Plain comparisons, not std::fmax (a library call here); a NaN coordinate is ignored.
-    double m = std::fabs(a.x);
-    for (const double c : {std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y), std::fabs(b.z)}) m = c > m ? c : m;
+    // Plain comparisons (maxsd), not std::fmax (a library call here); a NaN coordinate is ignored.
+    auto mx = [](double x, double y) { return y > x ? y : x; };
+    const double m = mx(mx(mx(std::fabs(a.x), std::fabs(a.y)), mx(std::fabs(a.z), std::fabs(b.x))), mx(std::fabs(b.y), std::fabs(b.z)));
     if (!(m > 0) || !std::isfinite(m) || (m >= 0x1p-100 && m <= 0x1p100)) return 1;
     int e = -std::ilogb(m);
     e = e > 1000 ? 1000 : (e < -1000 ? -1000 : e);
