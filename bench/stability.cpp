@@ -29,6 +29,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <ccd/ccd.h>
@@ -1133,11 +1134,26 @@ Family parallel_faces() {
     return f;
 }
 
+// A family of gap cases: per signed gap, `reps` pairs from make(rep, i) (A, B), A at a random
+// turn, B at another, along a random direction; half of them with casts.
+template <class Make>
+Family gap_family(const char* name, uint64_t seed, int reps, Make&& make) {
+    Family f{name, {}, false};
+    Rng r(seed);
+    int i = 0;
+    for (double g : signed_gaps())
+        for (int rep = 0; rep < reps; ++rep, ++i) {
+            const auto [A, B] = make(r, rep, i);
+            Pose pa;
+            pa.q = rand_quat(r);
+            add_gap_cases(f, r, A, pa, B, rand_quat(r), rand_unit(r), g, rep % 2 == 0);
+        }
+    return f;
+}
+
 Family needles() {
-    Family f{"needles", {}, false};
-    Rng r(404);
     const double widths[] = {1e-2, 1e-4, 1e-6};
-    auto needle = [&](double w) -> Shape {
+    auto needle = [&](Rng& r, double w) -> Shape {
         switch (std::uniform_int_distribution<int>(0, 2)(r)) {
             case 0: return box(1, w, w);
             case 1: return capsule(w, 1);
@@ -1148,58 +1164,34 @@ Family needles() {
             }
         }
     };
-    int i = 0;
-    for (double g : signed_gaps())
-        for (int rep = 0; rep < 8; ++rep, ++i) {
-            const double w = widths[i % 3];
-            const Shape A = needle(w);
-            const Shape B = rep % 2 ? needle(widths[(i / 3) % 3]) : random_shape(r, 1.0);
-            Pose pa;
-            pa.q = rand_quat(r);
-            add_gap_cases(f, r, A, pa, B, rand_quat(r), rand_unit(r), g, rep % 2 == 0);
-        }
-    return f;
+    return gap_family("needles", 404, 8, [&](Rng& r, int rep, int i) {
+        const Shape A = needle(r, widths[i % 3]);
+        const Shape B = rep % 2 ? needle(r, widths[(i / 3) % 3]) : random_shape(r, 1.0);
+        return std::pair<Shape, Shape>{A, B};
+    });
 }
 
 Family flat_thin() {
-    Family f{"flat_thin_hulls", {}, false};
-    Rng r(505);
     const double thick[] = {0, 1e-12, 1e-8, 1e-4};
-    int i = 0;
-    for (double g : signed_gaps())
-        for (int rep = 0; rep < 8; ++rep, ++i) {
-            auto flat = [&]() {
-                const double t = thick[size_t(i + rep) % 4];
-                std::vector<V3> p;
-                for (int j = 0; j < 10; ++j) p.push_back({uni(r, -1, 1), uni(r, -1, 1), t * uni(r, -1, 1)});
-                return hull(p);
-            };
-            const Shape A = flat();
-            const Shape B = rep % 3 == 0 ? flat() : random_shape(r, 1.0);
-            Pose pa;
-            pa.q = rand_quat(r);
-            add_gap_cases(f, r, A, pa, B, rand_quat(r), rand_unit(r), g, rep % 2 == 0);
-        }
-    return f;
+    return gap_family("flat_thin_hulls", 505, 8, [&](Rng& r, int rep, int i) {
+        auto flat = [&]() {
+            const double t = thick[size_t(i + rep) % 4];
+            std::vector<V3> p;
+            for (int j = 0; j < 10; ++j) p.push_back({uni(r, -1, 1), uni(r, -1, 1), t * uni(r, -1, 1)});
+            return hull(p);
+        };
+        const Shape A = flat();
+        const Shape B = rep % 3 == 0 ? flat() : random_shape(r, 1.0);
+        return std::pair<Shape, Shape>{A, B};
+    });
 }
 
 Family large_hulls() {
-    Family f{"large_hulls", {}, false};
-    Rng r(606);
-    int i = 0;
-    for (double g : signed_gaps())
-        for (int rep = 0; rep < 6; ++rep, ++i) {
-            const Shape A = grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16);  // 1352 points
-            Shape B;
-            switch (rep % 4) {
-                case 0: B = grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16); break;
-                default: B = random_shape(r, 1.0); break;
-            }
-            Pose pa;
-            pa.q = rand_quat(r);
-            add_gap_cases(f, r, A, pa, B, rand_quat(r), rand_unit(r), g, rep % 2 == 0);
-        }
-    return f;
+    return gap_family("large_hulls", 606, 6, [&](Rng& r, int rep, int) {
+        const Shape A = grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16);  // 1352 points
+        const Shape B = rep % 4 == 0 ? grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16) : random_shape(r, 1.0);
+        return std::pair<Shape, Shape>{A, B};
+    });
 }
 
 // Rays and casts passing a shape at distance delta (negative: cutting in by |delta|): the line
