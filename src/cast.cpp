@@ -105,16 +105,34 @@ Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
 
 namespace {
 
-// C = one shape (ray cast): p = s(d); b is zero.
+// C = one shape (ray cast): p = s(d); b is zero. `scale` as in PairSupport.
 template <class S>
 struct SingleSupport {
     S s;
-    Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
+    double scale = 1;
+    [[gnu::always_inline]] Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
         out_a = s(d);
+        if (scale != 1) [[unlikely]] out_a = scale * out_a;
         out_b = Vec3{};
         return out_a;
     }
 };
+
+Vec3 abs_max(Vec3 a, Vec3 b) {
+    return {std::fmax(std::fabs(a.x), std::fabs(b.x)), std::fmax(std::fabs(a.y), std::fabs(b.y)),
+            std::fmax(std::fabs(a.z), std::fabs(b.z))};
+}
+
+// The cast's scale (a power of two, as pair_scale): from the first support points and the ray's
+// start, lowered while the motion r would leave 2^400 (its products with v, which is about 1 at
+// that scale, stay finite).
+double cast_scale(Vec3 a, Vec3 b, Vec3 x, Vec3 r) {
+    double sc = pair_scale(a, abs_max(b, x));
+    const Vec3 m = abs_max(r, Vec3{});
+    const double rmax = std::fmax(m.x, std::fmax(m.y, m.z));
+    while (sc > 1 && !(rmax * sc <= 0x1p400)) sc = std::fmax(1.0, sc * 0x1p-100);
+    return sc;
+}
 
 // x reached the boundary of C (a clip happened, so x is on or outside C) and the tetrahedron of
 // the simplex holds it: x lies on one of its faces. The coordinates from signed volumes lose their
@@ -167,9 +185,14 @@ struct LocalCast {
 
 // Ray x(lambda) = s + lambda r against C (+ a ball of radius `margin`), C given by `sup`.
 // v0: the first search direction (x - some point of C, any non-zero vector works).
+// The loop runs at the scale cast_scale picks after the first support (sup by value: its scale is
+// set then); lambda does not depend on it, and the result's v and points are at the caller's.
 template <class Support>
-LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double tolerance,
+LocalCast cast_loop(Support sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double tolerance,
                     uint32_t max_iterations, ClipPolicy policy) {
+    // Only v0's direction matters: brought to about unit length (exact) so its products neither
+    // underflow nor overflow.
+    v0 = pair_scale(v0, Vec3{}) * v0;
     Simplex sx;
     double lambda = 0;
     Vec3 x = s;
@@ -195,7 +218,20 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
     uint32_t it = 0;
     while (it < max_iterations) {
         Vec3 a, b;
-        const Vec3 p = sup(v, a, b);
+        Vec3 p = sup(v, a, b);
+        if (it == 0) {
+            const double sc = cast_scale(a, b, x, r);
+            if (sc != 1) {
+                sup.scale = sc;
+                a = sc * a;
+                b = sc * b;
+                p = a - b;
+                s = sc * s;
+                r = sc * r;
+                x = s;
+                margin *= sc;
+            }
+        }
         ++it;
         Vec3 w = x - p;
         const double vw = dot(v, w);
@@ -339,6 +375,12 @@ LocalCast cast_loop(const Support& sup, double margin, Vec3 s, Vec3 r, Vec3 v0, 
         sx.closest_points(out.point_a, out.point_b);
     } else {
         out.point_a = out.point_b = Vec3{};
+    }
+    if (sup.scale != 1) {
+        const double inv = 1 / sup.scale;  // exact: a power of two within 2^+-1000
+        out.v = inv * out.v;
+        out.point_a = inv * out.point_a;
+        out.point_b = inv * out.point_b;
     }
     return out;
 }

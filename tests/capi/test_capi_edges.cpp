@@ -536,6 +536,65 @@ TEST(GjkEdges, TinyAndHugeScalesGiveTheUnitScaleAnswer) {
     }
 }
 
+// The casts at the same scales: the capsule moves 3 s toward the box, whose face is 1.5 s from its
+// side (toi 1/2); a ray from 5 s out along -x meets the box's face x = s at 4 s of its 10 s
+// (toi 0.4). Below 1e-160 the cast loop's squares underflowed and both reported a hit at toi 0.
+TEST(GjkEdges, TinyAndHugeScaleCastsGiveTheUnitScaleAnswer) {
+    for (double s : {1.0, 1e-100, 1e-160, 1e-200, 1e-300, 1e50, 1e99}) {
+        SCOPED_TRACE(testing::Message() << "scale " << s);
+        kairos_shape *a = nullptr, *b = nullptr;
+        ASSERT_EQ(kairos_shape_box({s, 2 * s, 0.5 * s}, &a), KAIROS_OK);
+        ASSERT_EQ(kairos_shape_capsule(0.5 * s, s, &b), KAIROS_OK);
+        const kairos_pose pa{{0, 0, 0}, {0, 0, 0, 1}};
+        const kairos_pose pb{{3 * s, 0.5 * s, 0}, {0, 0, 0, 1}};
+        for (int order = 0; order < 2; ++order) {
+            SCOPED_TRACE(order == 0 ? "capsule moves" : "box moves");
+            kairos_cast_result c{};
+            const int32_t st = order == 0 ? kairos_shape_cast(a, &pa, {0, 0, 0}, b, &pb, {-3 * s, 0, 0}, nullptr, &c)
+                                          : kairos_shape_cast(b, &pb, {0, 0, 0}, a, &pa, {3 * s, 0, 0}, nullptr, &c);
+            ASSERT_EQ(st, KAIROS_OK) << kairos_last_error();
+            ASSERT_EQ(c.hit, 1);
+            EXPECT_NEAR(c.toi, 0.5, 1e-6);
+            EXPECT_NEAR(std::fabs(c.normal.x), 1, 1e-9);
+            EXPECT_NEAR(c.point.x / s, order == 0 ? 1.0 : 2.5, 1e-6);  // the box's face, where it is at toi
+        }
+        kairos_cast_result r{};
+        ASSERT_EQ(kairos_ray_cast(a, &pa, {5 * s, 0.5 * s, 0.1 * s}, {-10 * s, 0, 0}, nullptr, &r), KAIROS_OK);
+        ASSERT_EQ(r.hit, 1);
+        EXPECT_NEAR(r.toi, 0.4, 1e-6);
+        EXPECT_NEAR(r.normal.x, 1, 1e-9);
+        EXPECT_NEAR(r.point.x / s, 1, 1e-6);
+        EXPECT_NEAR(r.point.y / s, 0.5, 1e-6);
+        // Shapes s apart that do not move: no hit.
+        kairos_cast_result m{};
+        const kairos_pose far{{2.5 * s + s, 0, 0}, {0, 0, 0, 1}};
+        ASSERT_EQ(kairos_shape_cast(a, &pa, {0, 0, 0}, b, &far, {0, 0, 0}, nullptr, &m), KAIROS_OK);
+        EXPECT_EQ(m.hit, 0);
+        kairos_shape_release(a);
+        kairos_shape_release(b);
+    }
+}
+
+// The fuzz finding it comes from: a ball of radius 1e-315 about 1.6e-240 from a point, neither
+// moving, was a hit at toi 0.
+TEST(GjkEdges, StillCastBetweenShapes1e240Apart) {
+    kairos_shape *ball = nullptr, *pt = nullptr;
+    ASSERT_EQ(kairos_shape_sphere(1e-315, &ball), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_point(&pt), KAIROS_OK);
+    const kairos_pose at{{1e-240, -1.2e-240, 0}, {0, 0, 0, 1}};
+    const kairos_pose id{{0, 0, 0}, {0, 0, 0, 1}};
+    for (int order = 0; order < 2; ++order) {
+        kairos_cast_result c{};
+        const int32_t st = order == 0 ? kairos_shape_cast(ball, &at, {0, 0, 0}, pt, &id, {0, 0, 0}, nullptr, &c)
+                                      : kairos_shape_cast(pt, &id, {0, 0, 0}, ball, &at, {0, 0, 0}, nullptr, &c);
+        ASSERT_EQ(st, KAIROS_OK);
+        EXPECT_EQ(c.hit, 0) << "order " << order << " toi " << c.toi;
+        EXPECT_EQ(c.toi, 1);
+    }
+    kairos_shape_release(ball);
+    kairos_shape_release(pt);
+}
+
 // A distance whose square underflows at unit scale: a point 1e-170 beside a unit segment (the
 // axis came out 1.0000054 long on such a pair; found by fuzzing).
 TEST(GjkEdges, DistanceWhoseSquareUnderflows) {
