@@ -536,6 +536,79 @@ TEST(GjkEdges, TinyAndHugeScalesGiveTheUnitScaleAnswer) {
     }
 }
 
+// Never late on thin and needle capsules: a ray crossing the axis of a capsule (radius r, half
+// height H along local z) reports a normal whose support plane the ray point at toi has not
+// crossed: n . x(toi) >= |n . axis| H + r (closed form) minus 1e-6 of the size. The final v, used
+// as the normal of rounded shapes, had a direction error of eps H / |v| there, tilting the plane
+// by 0.95 on H = 1e4, r = 7e-300, and by 5e-4 on H = 1.35, r = 6e-13 (found by fuzzing; those
+// two rays first, then a seeded sweep of rays through points of the axis).
+TEST(GjkEdges, RayCastNormalOnNeedleCapsulesIsNeverLate) {
+    struct Ray {
+        double radius, half;
+        kairos_pose pose;
+        V origin, translation;
+    };
+    std::vector<Ray> rays = {
+        {7.0087891966124971e-300, 9967.3151750972756, {{0, 0, 0}, {0, 0, 0, 1}},
+         {-0.67450980392156845, -0.67450980392156845, -0.67450980392156845},
+         {6.2431372549019599, 6.2431372549019599, 6.2431372549019599}},
+        {5.7656672007324327e-13, 1.3492332341496911,
+         {{-2.3686274509803922, -2.3686274509803922, -2.3686274509803922},
+          {0.46286995766905958, 0.46286995766905958, 0.46286995766905958, 0.59770745926609359}},
+         {-2.3686274509803922, -3.9936522468909743, -4}, {0, 1.6250247959105821, 1.6313725490196078}},
+    };
+    const uint64_t seed = 20261126;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (double half : {1.0, 1e4}) {
+        for (double rel : {1e-2, 1e-6, 1e-9, 1e-13, 1e-300}) {
+            for (int k = 0; k < 100; ++k) {
+                const Rot rot = make_rot({u(rng), u(rng), u(rng) + 2}, 3 * u(rng));
+                const V at{10 * u(rng), 10 * u(rng), 10 * u(rng)};
+                const V on_axis = apply(rot, V{0, 0, 0.9 * half * u(rng)}) + at;
+                // Mostly across the axis, starting outside: the start is at least r + 2 from the
+                // axis line, hence from the capsule.
+                const double phi = 3.14159 * u(rng);
+                const V local = unit({std::cos(phi), std::sin(phi), 0.3 * u(rng)});
+                const V dir = apply(rot, local);
+                const double reach = (rel * half + 2) / std::sqrt(local.x * local.x + local.y * local.y) * (1.5 + 0.5 * u(rng));
+                rays.push_back({rel * half, half, {{at.x, at.y, at.z}, {rot.q[0], rot.q[1], rot.q[2], rot.q[3]}},
+                                on_axis - reach * dir, 2 * reach * dir});
+            }
+        }
+    }
+    int hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Ray& ray = rays[i];
+        SCOPED_TRACE(testing::Message() << "ray " << i << " seed " << seed << " radius " << ray.radius << " half " << ray.half);
+        kairos_shape* cap = nullptr;
+        ASSERT_EQ(kairos_shape_capsule(ray.radius, ray.half, &cap), KAIROS_OK);
+        kairos_cast_result c{};
+        ASSERT_EQ(kairos_ray_cast(cap, &ray.pose, kv(ray.origin), kv(ray.translation), nullptr, &c), KAIROS_OK);
+        kairos_shape_release(cap);
+        if (i >= 2) {
+            ASSERT_EQ(c.hit, 1);  // every sweep ray crosses the axis inside the capsule
+            ASSERT_GT(c.toi, 0);  // from outside
+        }
+        if (c.hit == 0) continue;
+        ++hits;
+        const V n = fromk(c.normal);
+        const V x = ray.origin + c.toi * ray.translation;
+        // The capsule's axis in the world frame: the pose's rotation of local z.
+        const double qx = ray.pose.orientation.x, qy = ray.pose.orientation.y, qz = ray.pose.orientation.z,
+                     qw = ray.pose.orientation.w;
+        const double qn = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
+        const double x2 = qx / qn, y2 = qy / qn, z2 = qz / qn, w2 = qw / qn;
+        const V axis{2 * (x2 * z2 + y2 * w2), 2 * (y2 * z2 - x2 * w2), 1 - 2 * (x2 * x2 + y2 * y2)};
+        const V centre = fromk(ray.pose.position);
+        const double h = dot(n, centre) + std::fabs(dot(n, axis)) * ray.half + ray.radius;
+        const double size = ray.half + norm(ray.translation);
+        EXPECT_GE(dot(n, x), h - 1e-6 * size) << "normal " << n.x << " " << n.y << " " << n.z << " toi " << c.toi;
+        EXPECT_NEAR(norm(n), 1, 1e-12);
+    }
+    EXPECT_EQ(hits, static_cast<int>(rays.size()));
+}
+
 // The casts at the same scales: the capsule moves 3 s toward the box, whose face is 1.5 s from its
 // side (toi 1/2); a ray from 5 s out along -x meets the box's face x = s at 4 s of its 10 s
 // (toi 0.4). Below 1e-160 the cast loop's squares underflowed and both reported a hit at toi 0.
