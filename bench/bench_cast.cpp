@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "cast.hpp"
+#include "casts/cast.hpp"
 #include "cast_bench_common.hpp"
 #include "cast_peer_bullet.hpp"
 #include "cast_peer_fcl.hpp"

@@ -37,7 +37,7 @@
 #include <fcl/geometry/shape/box.h>
 #include <fcl/narrowphase/collision_object.h>
 
-#include "broadphase.hpp"
+#include "broadphase/broadphase.hpp"
 #include "scene_rng.hpp"
 
 using namespace kairos;

@@ -9,8 +9,8 @@
 #include <new>
 
 #include "kairos/kairos.h"
-#include "math.hpp"
-#include "shape.hpp"
+#include "math/math.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos::capi {
 

@@ -1,8 +1,8 @@
 // C API pair queries: distance, intersection, ray cast, shape cast, motion cast.
 #include "boundary.hpp"
-#include "cast.hpp"
-#include "gjk.hpp"
-#include "motion_cast.hpp"
+#include "casts/cast.hpp"
+#include "gjk/gjk.hpp"
+#include "motion/motion_cast.hpp"
 
 using namespace kairos;
 using namespace kairos::capi;

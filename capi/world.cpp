@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "boundary.hpp"
-#include "world.hpp"
+#include "world/world.hpp"
 
 using namespace kairos;
 using namespace kairos::capi;

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "cast.hpp"
+#include "casts/cast.hpp"
 #include "oracle/cast_oracle.hpp"
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace cast_test {
 

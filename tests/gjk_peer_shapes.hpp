@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "gjk_test_support.hpp"
-#include "math.hpp"
+#include "math/math.hpp"
 #include "oracle/polytope_oracle.hpp"
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace peer {
 

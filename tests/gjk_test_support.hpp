@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "oracle/polytope_oracle.hpp"
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace gjk_test {
 

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "cast_test_support.hpp"
-#include "motion.hpp"
-#include "motion_cast.hpp"
+#include "motion/motion.hpp"
+#include "motion/motion_cast.hpp"
 #include "oracle/motion_reference.hpp"
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace motion_test {
 

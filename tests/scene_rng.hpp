@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "math.hpp"
+#include "math/math.hpp"
 
 namespace kairos::scene {
 

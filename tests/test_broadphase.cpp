@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "broadphase.hpp"
+#include "broadphase/broadphase.hpp"
 #include "scene_rng.hpp"
 
 namespace kairos {

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "cast.hpp"
+#include "casts/cast.hpp"
 #include "cast_test_support.hpp"
 
 using namespace kairos;

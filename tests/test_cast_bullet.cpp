@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <random>
 
-#include "cast.hpp"
+#include "casts/cast.hpp"
 #include "cast_peer_bullet.hpp"
 #include "cast_test_support.hpp"
 

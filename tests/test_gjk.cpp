@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "gjk.hpp"
+#include "gjk/gjk.hpp"
 #include "gjk_test_support.hpp"
 
 using namespace kairos;

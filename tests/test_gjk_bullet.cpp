@@ -19,7 +19,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
-#include "gjk.hpp"
+#include "gjk/gjk.hpp"
 #include "gjk_peer_bullet.hpp"
 #include "gjk_peer_shapes.hpp"
 

@@ -17,9 +17,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "gjk.hpp"
+#include "gjk/gjk.hpp"
 #include "gjk_peer_shapes.hpp"
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 using namespace kairos;
 

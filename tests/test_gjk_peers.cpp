@@ -25,7 +25,7 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "gjk.hpp"
+#include "gjk/gjk.hpp"
 #include "gjk_peer_fcl.hpp"
 #include "gjk_peer_shapes.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 namespace {

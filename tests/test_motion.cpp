@@ -5,9 +5,9 @@
 #include <numbers>
 #include <random>
 
-#include "motion.hpp"
-#include "radius.hpp"
-#include "shape.hpp"
+#include "motion/motion.hpp"
+#include "shapes/radius.hpp"
+#include "shapes/shape.hpp"
 
 using namespace kairos;
 

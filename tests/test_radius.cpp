@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "radius.hpp"
-#include "shape.hpp"
+#include "shapes/radius.hpp"
+#include "shapes/shape.hpp"
 
 using namespace kairos;
 

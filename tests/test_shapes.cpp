@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 namespace {

@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "broadphase.hpp"
-#include "cast.hpp"
-#include "gjk.hpp"
-#include "motion.hpp"
-#include "motion_cast.hpp"
-#include "shape.hpp"
-#include "world.hpp"
+#include "broadphase/broadphase.hpp"
+#include "casts/cast.hpp"
+#include "gjk/gjk.hpp"
+#include "motion/motion.hpp"
+#include "motion/motion_cast.hpp"
+#include "shapes/shape.hpp"
+#include "world/world.hpp"
 #include "scene_rng.hpp"
 
 namespace kairos {

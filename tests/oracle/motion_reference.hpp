@@ -21,12 +21,12 @@
 #include <limits>
 #include <vector>
 
-#include "gjk.hpp"
-#include "math.hpp"
+#include "gjk/gjk.hpp"
+#include "math/math.hpp"
 #include "oracle/cast_oracle.hpp"
 #include "oracle/polytope_oracle.hpp"
-#include "shape.hpp"
-#include "world.hpp"
+#include "shapes/shape.hpp"
+#include "world/world.hpp"
 
 namespace motion_ref {
 

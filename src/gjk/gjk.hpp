@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <utility>
 
-#include "math.hpp"
-#include "shape.hpp"
+#include "math/math.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

@@ -11,7 +11,7 @@
 // adjacent endpoints L < R swap at the root of d(t) = (1 - t) d0 + t d1 with d0 = R.p0 - L.p0 and
 // d1 = R.p1 - L.p1, that is t = d0 / (d0 - d1). Whether they swap at all depends only on the sign
 // of d1, so the arrays end the step in exactly the order of the end positions.
-#include "broadphase.hpp"
+#include "broadphase/broadphase.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,11 +1,11 @@
 // Motion cast by disk bounds with bisection (see motion_cast.hpp and ALGORITHMS.md §4). No heap
 // allocation: the fattened shapes live on the stack for one window each.
-#include "motion_cast.hpp"
+#include "motion/motion_cast.hpp"
 
 #include <cmath>
 
-#include "gjk.hpp"
-#include "radius.hpp"
+#include "gjk/gjk.hpp"
+#include "shapes/radius.hpp"
 
 namespace kairos {
 namespace motion_detail {

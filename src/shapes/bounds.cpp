@@ -1,7 +1,7 @@
 // Shape queries shared by every kind: bounds from support mappings.
 #include <cmath>
 
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

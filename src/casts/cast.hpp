@@ -10,9 +10,9 @@
 
 #include <cstdint>
 
-#include "gjk.hpp"
-#include "math.hpp"
-#include "shape.hpp"
+#include "gjk/gjk.hpp"
+#include "math/math.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

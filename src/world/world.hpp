@@ -9,9 +9,9 @@
 #include <memory>
 #include <vector>
 
-#include "broadphase.hpp"
-#include "math.hpp"
-#include "shape.hpp"
+#include "broadphase/broadphase.hpp"
+#include "math/math.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

@@ -2,7 +2,7 @@
 // through its local origin. It sizes the disk that bounds a rotating shape (ALGORITHMS.md §4).
 #pragma once
 
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

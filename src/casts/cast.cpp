@@ -13,8 +13,8 @@
 // Keeping the simplex takes 1.5-6x fewer iterations and up to 2.3x less time, although each clip
 // recomputes every determinant of the kept points; both policies agree with the oracle (Restart
 // only to 1e-6 on curved shapes, where at 1e-10 it reached the iteration cap with poor simplices).
-#include "cast.hpp"
-#include "support_kernels.hpp"
+#include "casts/cast.hpp"
+#include "gjk/support_kernels.hpp"
 
 #include <bit>
 #include <cmath>

@@ -40,7 +40,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shape.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

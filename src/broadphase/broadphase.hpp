@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "math.hpp"
+#include "math/math.hpp"
 
 namespace kairos {
 

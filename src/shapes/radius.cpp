@@ -4,7 +4,7 @@
 // h(w) = w . s(w): the farthest point's distance from the axis is its largest component along
 // such a w. Distance from a line is convex in x, so over a polytope its maximum is at a vertex,
 // and over a cylinder or cone at a point of a rim circle (or the apex).
-#include "radius.hpp"
+#include "shapes/radius.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "math.hpp"
-#include "world.hpp"
+#include "math/math.hpp"
+#include "world/world.hpp"
 
 namespace kairos {
 

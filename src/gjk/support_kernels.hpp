@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstddef>
 
-#include "math.hpp"
-#include "shape.hpp"
+#include "math/math.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos::kernels {
 

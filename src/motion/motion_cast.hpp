@@ -10,9 +10,9 @@
 
 #include <cstdint>
 
-#include "cast.hpp"
-#include "motion.hpp"
-#include "shape.hpp"
+#include "casts/cast.hpp"
+#include "motion/motion.hpp"
+#include "shapes/shape.hpp"
 
 namespace kairos {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "math.hpp"
+#include "math/math.hpp"
 
 namespace kairos {
 

@@ -1,16 +1,16 @@
 // The world and its step (see world.hpp): boxes over the step, broad phase, narrow phase.
-#include "world.hpp"
+#include "world/world.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "cast.hpp"
-#include "gjk.hpp"
-#include "motion.hpp"
-#include "motion_cast.hpp"
-#include "radius.hpp"
+#include "casts/cast.hpp"
+#include "gjk/gjk.hpp"
+#include "motion/motion.hpp"
+#include "motion/motion_cast.hpp"
+#include "shapes/radius.hpp"
 
 namespace kairos {
 
