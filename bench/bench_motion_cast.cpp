@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
                     sa.push_back(cast_peer::bullet_shape(x.a.body));
                     sb.push_back(cast_peer::bullet_shape(x.b.body));
                 }
-                auto pose = [](const BodyState& s) { return cast_peer::bt_pose(make_pose(s.position, s.orientation)); };
+                auto pose = [](const Pose& s) { return cast_peer::bt_pose(make_transform(s.position, s.orientation)); };
                 auto one = [&](size_t i) {
                     btVoronoiSimplexSolver simplex;
                     btGjkEpaPenetrationDepthSolver epa;
@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
                     ga.push_back(cast_peer::fcl_shape(x.a.body));
                     gb.push_back(cast_peer::fcl_shape(x.b.body));
                 }
-                auto pose = [](const BodyState& s) { return cast_peer::fcl_pose(make_pose(s.position, s.orientation)); };
+                auto pose = [](const Pose& s) { return cast_peer::fcl_pose(make_transform(s.position, s.orientation)); };
                 std::vector<double> per(set.size(), 1e300);
                 std::vector<cast_peer::FclOut> first;
                 for (int rep = 0; rep < 3; ++rep) {

@@ -55,7 +55,7 @@ Vec3 read_point(const kairos_vec3& v, const char* function, const char* name) {
 
 void require_extent(const Shape* s, const char* function, const char* what) {
     Vec3 lo, hi;
-    bounds(*s, make_pose({}, Quat{0, 0, 0, 1}), lo, hi);
+    bounds(*s, make_transform({}, Quat{0, 0, 0, 1}), lo, hi);
     const double extent = std::fmax(max_abs(lo), max_abs(hi));
     if (!(extent <= KAIROS_MAX_MAGNITUDE)) {  // negated: NaN fails too
         s->release();

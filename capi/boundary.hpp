@@ -85,7 +85,7 @@ void require_finite_result(bool finite, const char* function);
 struct BodyPose {
     Vec3 position;
     Quat orientation;
-    Pose rigid() const { return make_pose(position, orientation); }
+    Transform rigid() const { return make_transform(position, orientation); }
 };
 BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name);
 

@@ -144,8 +144,8 @@ KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion
         const BodyPose b1 = read_pose(&motion_b->end, fn, "motion_b.end");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        const Motion ma(BodyState{a0.position, a0.orientation}, BodyState{a1.position, a1.orientation});
-        const Motion mb(BodyState{b0.position, b0.orientation}, BodyState{b1.position, b1.orientation});
+        const Motion ma(Pose{a0.position, a0.orientation}, Pose{a1.position, a1.orientation});
+        const Motion mb(Pose{b0.position, b0.orientation}, Pose{b1.position, b1.orientation});
         *out = checked(kairos::motion_cast(shape_of(a), ma, shape_of(b), mb, qs.tolerance, qs.max_iterations), fn);
     });
 }

@@ -17,7 +17,7 @@ struct kairos_world {
 
 namespace {
 
-BodyState state_of(const BodyPose& p) { return {p.position, p.orientation}; }
+Pose state_of(const BodyPose& p) { return {p.position, p.orientation}; }
 
 const World::Object& live_object(const kairos_world* w, kairos_object_id id, const char* function) {
     const World::Object* o = w->core.find(id);

@@ -62,7 +62,7 @@ inline std::unique_ptr<btConvexShape> bullet_shape(const cast_test::Body& b) {
 
 inline btScalar s_(double v) { return static_cast<btScalar>(v); }
 
-inline btTransform bt_pose(const kairos::Pose& p, kairos::Vec3 shift = {}) {
+inline btTransform bt_pose(const kairos::Transform& p, kairos::Vec3 shift = {}) {
     const kairos::Mat3& r = p.rotation;
     btMatrix3x3 m(s_(r.r[0].x), s_(r.r[0].y), s_(r.r[0].z), s_(r.r[1].x), s_(r.r[1].y), s_(r.r[1].z), s_(r.r[2].x),
                   s_(r.r[2].y), s_(r.r[2].z));

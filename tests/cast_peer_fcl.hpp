@@ -53,7 +53,7 @@ inline std::shared_ptr<fcl::CollisionGeometryd> fcl_shape(const cast_test::Body&
     }
 }
 
-inline fcl::Transform3d fcl_pose(const kairos::Pose& p, kairos::Vec3 shift = {}) {
+inline fcl::Transform3d fcl_pose(const kairos::Transform& p, kairos::Vec3 shift = {}) {
     fcl::Transform3d t = fcl::Transform3d::Identity();
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) t.linear()(i, j) = p.rotation.r[i][j];

@@ -148,7 +148,7 @@ inline Solid random_solid(std::mt19937_64& rng, Kind k, double scale = 1, int hu
     return make_solid(k, r, h, he, pts);
 }
 
-inline void place(Body& b, const kairos::Pose& p) {
+inline void place(Body& b, const kairos::Transform& p) {
     for (int i = 0; i < 3; ++i) {
         b.R[3 * i + 0] = p.rotation.r[i].x;
         b.R[3 * i + 1] = p.rotation.r[i].y;
@@ -162,7 +162,7 @@ inline P3 p3(kairos::Vec3 v) { return {v.x, v.y, v.z}; }
 // A random cast: A near `base`, B 1..3 radii away, B's relative motion aimed at A with a jitter
 // that makes about half of the casts hit.
 struct Cast {
-    kairos::Pose pa, pb;
+    kairos::Transform pa, pb;
     kairos::Vec3 ta, tb;
 };
 
@@ -170,8 +170,8 @@ inline Cast random_cast(std::mt19937_64& rng, const Solid& a, const Solid& b, ka
     std::uniform_real_distribution<double> gap(1.0, 3.0), reach(0.6, 2.2), jitter(0, 2.5), small(-0.3, 0.3);
     Cast c;
     const double sum = a.radius + b.radius;
-    c.pa = kairos::make_pose(base + small(rng) * sum * random_unit(rng), random_quat(rng));
-    c.pb = kairos::make_pose(c.pa.translation + gap(rng) * sum * random_unit(rng), random_quat(rng));
+    c.pa = kairos::make_transform(base + small(rng) * sum * random_unit(rng), random_quat(rng));
+    c.pb = kairos::make_transform(c.pa.translation + gap(rng) * sum * random_unit(rng), random_quat(rng));
     const kairos::Vec3 aim = (c.pa.translation - c.pb.translation) * reach(rng) + jitter(rng) * sum * random_unit(rng);
     c.ta = small(rng) * sum * motion_scale * random_unit(rng);
     c.tb = c.ta + aim * motion_scale;

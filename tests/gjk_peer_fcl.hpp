@@ -46,7 +46,7 @@ inline std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const Spec& s) {
     return nullptr;
 }
 
-inline fcl::Transform3d fcl_transform(const kairos::Pose& p) {
+inline fcl::Transform3d fcl_transform(const kairos::Transform& p) {
     fcl::Transform3d t = fcl::Transform3d::Identity();
     fcl::Matrix3d r;
     for (int i = 0; i < 3; ++i)

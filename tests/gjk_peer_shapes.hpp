@@ -30,7 +30,7 @@ struct Spec {
     double a = 0, b = 0, c = 0;
     gjk_test::Verts verts;
     oracle::Polytope local_poly;  // hulls and boxes: faces for membership tests and FCL
-    kairos::Pose pose;
+    kairos::Transform pose;
 };
 
 // ---- Test-side support mappings and signed excess (independent of src/) ------------------------
@@ -178,9 +178,9 @@ inline Spec random_spec(std::mt19937_64& rng, Kind k, int hull_points = 0) {
 // shapes' extents scaled by [0.2, 1.6]: roughly a third of the pairs overlap.
 inline void place_pair(std::mt19937_64& rng, Spec& a, Spec& b) {
     std::uniform_real_distribution<double> gap(0.2, 1.6);
-    a.pose = kairos::make_pose(0.2 * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
+    a.pose = kairos::make_transform(0.2 * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
     const double reach = (extent(a) + extent(b)) * gap(rng);
-    b.pose = kairos::make_pose(a.pose.translation + reach * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
+    b.pose = kairos::make_transform(a.pose.translation + reach * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
 }
 
 struct Pair {

@@ -71,7 +71,7 @@ inline Verts random_points(std::mt19937_64& rng, int n, kairos::Vec3 radii) {
 
 // The polytope of local vertices at a pose, in long double (the pose's double matrix and
 // translation are what the library uses too).
-inline oracle::Polytope world_polytope(const Verts& local, const kairos::Pose& pose) {
+inline oracle::Polytope world_polytope(const Verts& local, const kairos::Transform& pose) {
     const double r[9] = {pose.rotation.r[0].x, pose.rotation.r[0].y, pose.rotation.r[0].z,
                          pose.rotation.r[1].x, pose.rotation.r[1].y, pose.rotation.r[1].z,
                          pose.rotation.r[2].x, pose.rotation.r[2].y, pose.rotation.r[2].z};

@@ -19,7 +19,7 @@ namespace motion_test {
 
 using cast_test::Kind;
 using cast_test::Solid;
-using kairos::BodyState;
+using kairos::Pose;
 using kairos::Quat;
 using kairos::Vec3;
 
@@ -31,7 +31,7 @@ inline Quat turn(Quat q, Vec3 axis, double angle) {
 }
 
 struct MotionCase {
-    BodyState a0, a1, b0, b1;
+    Pose a0, a1, b0, b1;
 };
 
 // Options of a random motion case.
@@ -80,7 +80,7 @@ inline motion_ref::Pair reference_pair(const Solid& a, const Solid& b, const Mot
 inline double contact_distance(const kairos::Shape& a, const kairos::Shape& b, double tolerance) {
     auto radius = [](const kairos::Shape& s) {
         Vec3 lo, hi;
-        kairos::bounds(s, kairos::Pose{}, lo, hi);
+        kairos::bounds(s, kairos::Transform{}, lo, hi);
         return kairos::length(Vec3{std::fmax(std::fabs(lo.x), std::fabs(hi.x)), std::fmax(std::fabs(lo.y), std::fabs(hi.y)),
                                    std::fmax(std::fabs(lo.z), std::fabs(hi.z))});
     };

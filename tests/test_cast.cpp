@@ -1,4 +1,4 @@
-// Tests of the GJK ray cast and shape cast (src/cast.hpp) against the long double oracles of
+// Tests of the GJK ray cast and shape cast (src/casts/cast.hpp) against the long double oracles of
 // tests/oracle/cast_oracle.hpp: random casts of every pair of shape kinds, closed forms, hard cases.
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@ namespace {
 constexpr double kTol = 1e-10;  // the public default
 constexpr uint32_t kMaxIt = 256;
 
-[[maybe_unused]] Pose at(Vec3 p, Quat q = {}) { return make_pose(p, q); }
+[[maybe_unused]] Transform at(Vec3 p, Quat q = {}) { return make_transform(p, q); }
 
 struct Stats {
     int casts = 0, hits = 0, truth_hits = 0, misses = 0, false_hits = 0, late = 0, grazing = 0;
@@ -194,7 +194,7 @@ TEST(RayCast, RandomRaysOnEveryKind) {
         int hits = 0, n = 0;
         for (int i = 0; i < 150; ++i) {
             Solid s = random_solid(rng, k);
-            const Pose pose = make_pose(0.5 * random_unit(rng), random_quat(rng));
+            const Transform pose = make_transform(0.5 * random_unit(rng), random_quat(rng));
             place(s.body, pose);
             const Vec3 origin = pose.translation + (s.radius * (1.5 + 2 * std::uniform_real_distribution<double>(0, 1)(rng))) * random_unit(rng);
             const Vec3 aim = pose.translation + s.radius * std::uniform_real_distribution<double>(0, 1.6)(rng) * random_unit(rng);
@@ -477,7 +477,7 @@ TEST(CastCurved, RaysOntoACylinderAgainstClosedForm) {
         t1 = std::min(t1, (-qb + std::sqrt(disc)) / (2 * qa));
         if (!(t0 < t1) || t0 <= 0) continue;  // misses the solid, or starts inside
         ++rays;
-        const CastResult c = ray_cast(cyl, Pose{}, o, r, kTol, kMaxIt);
+        const CastResult c = ray_cast(cyl, Transform{}, o, r, kTol, kMaxIt);
         ASSERT_TRUE(c.hit) << "seed " << seed << " ray " << i;
         ++hits;
         EXPECT_LE(c.toi, t0 + 1e-12) << "late; seed " << seed << " ray " << i;

@@ -1,4 +1,4 @@
-// Tests of the GJK core (src/gjk.hpp): closed forms, random polytopes against the exact oracle,
+// Tests of the GJK core (src/gjk/gjk.hpp): closed forms, random polytopes against the exact oracle,
 // hard cases, and the intersection test with a cached axis.
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@ namespace {
 constexpr double kTol = 1e-10;      // the public default
 constexpr double kEps = 2.220446049250313e-16;
 
-Pose at(Vec3 p, Quat q = {}) { return make_pose(p, q); }
+Transform at(Vec3 p, Quat q = {}) { return make_transform(p, q); }
 
 void expect_finite(const DistanceResult& r) {
     EXPECT_TRUE(std::isfinite(r.distance));
@@ -72,7 +72,7 @@ TEST(GjkClosedForm, SphereBox) {
     int separated = 0;
     for (int i = 0; i < 500; ++i) {
         const Quat q = random_quat(rng);
-        const Pose pb = at({0.1, -0.2, 0.3}, q);
+        const Transform pb = at({0.1, -0.2, 0.3}, q);
         const Vec3 local{u(rng), u(rng), u(rng)};
         const Vec3 c = pb.apply(local);
         const Vec3 clamp{std::clamp(local.x, -h.x, h.x), std::clamp(local.y, -h.y, h.y), std::clamp(local.z, -h.z, h.z)};
@@ -93,8 +93,8 @@ TEST(GjkClosedForm, CapsuleCapsuleAsSegments) {
     std::mt19937_64 rng(13);
     int separated = 0, overlapping = 0;
     for (int i = 0; i < 500; ++i) {
-        const Pose pa = at(random_unit(rng), random_quat(rng));
-        const Pose pb = at(1.2 * random_unit(rng), random_quat(rng));
+        const Transform pa = at(random_unit(rng), random_quat(rng));
+        const Transform pb = at(1.2 * random_unit(rng), random_quat(rng));
         const Vec3 a0 = pa.apply({0, 0, -1.0}), a1 = pa.apply({0, 0, 1.0});
         const Vec3 b0 = pb.apply({0, 0, -0.5}), b1 = pb.apply({0, 0, 0.5});
         const double seg = std::sqrt(
@@ -229,9 +229,9 @@ void run_random_pairs(uint64_t seed, int count, double far, double scale, Random
             body->shape = hull(vs);  // scaled copies as hulls of their (scaled) vertices
         }
         const Vec3 base = far * random_unit(rng);
-        const Pose pa = at(base + 0.1 * scale * random_unit(rng), random_quat(rng));
+        const Transform pa = at(base + 0.1 * scale * random_unit(rng), random_quat(rng));
         const double reach = (radius_of(a.verts) + radius_of(b.verts)) * gap(rng);
-        const Pose pb = at(pa.translation + reach * random_unit(rng), random_quat(rng));
+        const Transform pb = at(pa.translation + reach * random_unit(rng), random_quat(rng));
 
         const oracle::Polytope oa = world_polytope(a.verts, pa), ob = world_polytope(b.verts, pb);
         const oracle::Result o = oracle::distance(oa, ob);
@@ -364,7 +364,7 @@ TEST(GjkHard, NearlyParallelFaces) {
         const Vec3 axis = random_unit(rng);
         const Quat q = normalized(Quat{axis.x * std::sin(angle / 2), axis.y * std::sin(angle / 2), axis.z * std::sin(angle / 2),
                                        std::cos(angle / 2)});
-        const Pose pb = at({2.5, 0.2, 0.1}, q);
+        const Transform pb = at({2.5, 0.2, 0.1}, q);
         const oracle::Result o = oracle::distance(world_polytope(box_vertices({1, 1, 1}), at({})),
                                                   world_polytope(box_vertices({1, 1, 1}), pb));
         const DistanceResult r = gjk_distance(*b, at({}), *b, pb, kTol, 256);
@@ -385,8 +385,8 @@ TEST(GjkHard, NeedlesAndFlatHulls) {
         for (int k = 0; k < 12; ++k) needle.push_back({10 * j(rng), 1e-3 * j(rng), 1e-3 * j(rng)});
         for (int k = 0; k < 16; ++k) slab.push_back({j(rng), j(rng), 1e-4 * j(rng)});
         ShapePtr sn = hull(needle), ss = hull(slab);
-        const Pose pa = at({j(rng), j(rng), 0.05 * j(rng)}, random_quat(rng));
-        const Pose pb = at({}, {});
+        const Transform pa = at({j(rng), j(rng), 0.05 * j(rng)}, random_quat(rng));
+        const Transform pb = at({}, {});
         const oracle::Polytope on = world_polytope(needle, pa), os = world_polytope(slab, pb);
         const oracle::Result o = oracle::distance(on, os);
         const DistanceResult r = gjk_distance(*sn, pa, *ss, pb, kTol, 256);
@@ -501,9 +501,9 @@ TEST(GjkIntersect, CachedAxisOnSmoothMotion) {
     int hits = 0, frames = 4000, checked = 0;
     for (int f = 0; f < frames; ++f) {
         const double t = f * 0.004;
-        const Pose pa = at({0, 0, 0}, normalized(Quat{std::sin(0.3 * t), 0.2, 0.1, std::cos(0.3 * t)}));
+        const Transform pa = at({0, 0, 0}, normalized(Quat{std::sin(0.3 * t), 0.2, 0.1, std::cos(0.3 * t)}));
         const double rad = 2.45 + 0.9 * std::sin(1.7 * t);
-        const Pose pb = at({rad * std::cos(t), rad * std::sin(t), 0.3 * std::sin(0.5 * t)},
+        const Transform pb = at({rad * std::cos(t), rad * std::sin(t), 0.3 * std::sin(0.5 * t)},
                            normalized(Quat{0.1, std::sin(0.7 * t), 0.3, std::cos(0.7 * t)}));
         uint32_t it = 0;
         const bool hit = gjk_intersect(*h, pa, *b, pb, axis, &it);

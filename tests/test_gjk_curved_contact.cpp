@@ -39,7 +39,7 @@ TEST(GjkCurvedContact, SphereJustOutsideCylinderSide) {
                 const double z = -0.9 + 1.8 * u01(rng);  // the side, away from the rims
                 const Vec3 n{std::cos(theta), std::sin(theta), 0};
                 const Vec3 centre = Vec3{n.x, n.y, z} + (r + gap) * n;
-                Pose pa, pb;
+                Transform pa, pb;
                 pb.translation = centre;
                 const DistanceResult d = gjk_distance(cyl, pa, sphere, pb, tol, 256);
                 ++cases;
@@ -75,8 +75,8 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
             for (int i = 0; i < 120; ++i) {
                 peer::Spec a = peer::random_spec(rng, static_cast<Kind>(ka), 16);
                 peer::Spec b = peer::random_spec(rng, static_cast<Kind>(kb), 16);
-                a.pose = make_pose(0.3 * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
-                b.pose = make_pose(Vec3{}, gjk_test::random_quat(rng));
+                a.pose = make_transform(0.3 * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
+                b.pose = make_transform(Vec3{}, gjk_test::random_quat(rng));
                 const Vec3 n = gjk_test::random_unit(rng);
                 const Vec3 pa = peer::world_support(a, n), pb0 = peer::world_support(b, -1.0 * n);
                 const double scale = peer::extent(a) + peer::extent(b);

@@ -210,7 +210,7 @@ TEST(GjkPeers, Fcl508AxisAlignedBoxes) {
         p.a.a = p.a.b = p.a.c = p.b.a = p.b.b = p.b.c = 1;
         Vec3 c{};
         c[axis] = 5;
-        p.b.pose = make_pose(c, {});
+        p.b.pose = make_transform(c, {});
         pairs.push_back(p);
     }
     int crashes = 0;

@@ -24,6 +24,12 @@ double angle_between(Quat a, Quat b) {
     return 2 * std::acos(std::fmin(1.0, d));
 }
 
+// Support of a disk of `radius` centred at the origin, perpendicular to unit `normal`.
+inline Vec3 disk_support(Vec3 normal, double radius, Vec3 d) {
+    const DiskShape disk(normal, radius);
+    return support(disk, d);
+}
+
 }  // namespace
 
 TEST(Motion, EndpointsShortestArcAndConstantRate) {
@@ -32,10 +38,10 @@ TEST(Motion, EndpointsShortestArcAndConstantRate) {
     std::uniform_real_distribution<double> u(-5, 5);
     for (int trial = 0; trial < 500; ++trial) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed << " trial " << trial);
-        BodyState s{{u(rng), u(rng), u(rng)}, random_unit(rng)};
-        BodyState e{{u(rng), u(rng), u(rng)}, random_unit(rng)};
+        Pose s{{u(rng), u(rng), u(rng)}, random_unit(rng)};
+        Pose e{{u(rng), u(rng), u(rng)}, random_unit(rng)};
         // The same end orientation given as -q must give the same motion.
-        BodyState e_neg = e;
+        Pose e_neg = e;
         e_neg.orientation = {-e.orientation.x, -e.orientation.y, -e.orientation.z, -e.orientation.w};
         const Motion m(s, e), m_neg(s, e_neg);
         EXPECT_NEAR(m.angle(), m_neg.angle(), 1e-12);
@@ -47,19 +53,19 @@ TEST(Motion, EndpointsShortestArcAndConstantRate) {
         // Constant angular velocity about one axis: the turn from start to t is t * angle, and
         // the axis stays fixed (points on it do not move relative to the origin).
         for (double t : {0.1, 0.37, 0.5, 0.81}) {
-            const BodyState b = m.at(t);
+            const Pose b = m.at(t);
             EXPECT_NEAR(angle_between(s.orientation, b.orientation), t * m.angle(), 1e-7) << t;
             const Vec3 on_axis_local = mul_transpose(to_matrix(s.orientation), m.axis());
             EXPECT_NEAR(length(to_matrix(b.orientation) * on_axis_local - m.axis()), 0, 1e-12) << t;
         }
     }
     // No rotation: a pure translation, whatever the (equal) orientation, and for q and -q.
-    const BodyState a{{0, 0, 0}, {0, 0, 0, 1}}, b{{1, 2, 3}, {0, 0, 0, 1}};
+    const Pose a{{0, 0, 0}, {0, 0, 0, 1}}, b{{1, 2, 3}, {0, 0, 0, 1}};
     EXPECT_FALSE(Motion(a, b).rotates());
     std::mt19937_64 r2(seed + 1);
     for (int i = 0; i < 200; ++i) {
         const Quat q = random_unit(r2);
-        const BodyState s{{0, 0, 0}, q}, e{{1, 0, 0}, q}, e_neg{{1, 0, 0}, {-q.x, -q.y, -q.z, -q.w}};
+        const Pose s{{0, 0, 0}, q}, e{{1, 0, 0}, q}, e_neg{{1, 0, 0}, {-q.x, -q.y, -q.z, -q.w}};
         EXPECT_FALSE(Motion(s, e).rotates()) << i;
         EXPECT_FALSE(Motion(s, e_neg).rotates()) << i;
         EXPECT_EQ(Motion(s, e).angle(), 0.0);
@@ -75,7 +81,7 @@ TEST(Motion, DiskBoundContainsEveryPointPath) {
     BoxShape box({0.2, 1.5, 0.4});
     for (int trial = 0; trial < 300; ++trial) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed << " trial " << trial);
-        const BodyState s{{0, 0, 0}, random_unit(rng)}, e{{0, 0, 0}, random_unit(rng)};
+        const Pose s{{0, 0, 0}, random_unit(rng)}, e{{0, 0, 0}, random_unit(rng)};
         const Motion m(s, e);
         const Vec3 local_axis = mul_transpose(to_matrix(s.orientation), m.axis());
         const double rho = extreme_radius(box, local_axis);

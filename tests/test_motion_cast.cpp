@@ -1,4 +1,4 @@
-// Tests of the motion cast (src/motion_cast.hpp) against the conservative-advancement reference of
+// Tests of the motion cast (src/motion/motion_cast.hpp) against the conservative-advancement reference of
 // tests/oracle/motion_reference.hpp and closed forms: random rotating pairs of every kind, spinning
 // rods through thin walls, a spinning box grazing a sphere, rotation about a point outside the hull.
 #include <gtest/gtest.h>
@@ -194,7 +194,7 @@ TEST(MotionCast, ConvergesAsToleranceShrinks) {
 
 namespace {
 
-BodyState state(Vec3 p, Quat q = {}) { return {p, q}; }
+Pose state(Vec3 p, Quat q = {}) { return {p, q}; }
 Quat about_z(double angle) { return {0, 0, std::sin(0.5 * angle), std::cos(0.5 * angle)}; }
 
 }  // namespace
@@ -261,7 +261,7 @@ TEST(MotionCast, ThinRodsTunnelThroughThinWalls) {
         const Motion ma(state({0, 0, 0}, to_y), state(slide, u(rng) < 0.5 ? end : Quat{-end.x, -end.y, -end.z, -end.w}));
         const Motion mb(state({D + thickness, 0, 0}), state({D + thickness, 0, 0}));
         // Translation only (the two end poses): no hit.
-        const CastResult lin = shape_cast(rod, make_pose({0, 0, 0}, to_y), slide, wall, make_pose({D + thickness, 0, 0}, {}),
+        const CastResult lin = shape_cast(rod, make_transform({0, 0, 0}, to_y), slide, wall, make_transform({D + thickness, 0, 0}, {}),
                                           {}, 1e-10, kMaxIt);
         EXPECT_FALSE(lin.hit);
         const CastResult r = motion_cast(rod, ma, wall, mb, 1e-10, kMaxIt);
@@ -384,8 +384,8 @@ TEST(MotionCast, PureTranslationIsTheShapeCast) {
         c.b1.orientation = {-c.b0.orientation.x, -c.b0.orientation.y, -c.b0.orientation.z, -c.b0.orientation.w};
         MotionCastStats st;
         const CastResult r = motion_cast(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1), 1e-10, kMaxIt, &st);
-        const CastResult s = shape_cast(*a.shape, make_pose(c.a0.position, c.a0.orientation), c.a1.position - c.a0.position,
-                                        *b.shape, make_pose(c.b0.position, c.b0.orientation), c.b1.position - c.b0.position,
+        const CastResult s = shape_cast(*a.shape, make_transform(c.a0.position, c.a0.orientation), c.a1.position - c.a0.position,
+                                        *b.shape, make_transform(c.b0.position, c.b0.orientation), c.b1.position - c.b0.position,
                                         1e-10, kMaxIt);
         EXPECT_EQ(r.hit, s.hit);
         EXPECT_EQ(r.toi, s.toi);

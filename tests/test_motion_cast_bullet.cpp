@@ -24,7 +24,7 @@ BulletOut bullet_motion(const btConvexShape& a, const btConvexShape& b, const Mo
     btGjkEpaPenetrationDepthSolver epa;
     btContinuousConvexCollision ccd(&a, &b, &simplex, &epa);
     btConvexCast::CastResult res;
-    auto pose = [](const BodyState& s) { return cast_peer::bt_pose(make_pose(s.position, s.orientation)); };
+    auto pose = [](const Pose& s) { return cast_peer::bt_pose(make_transform(s.position, s.orientation)); };
     BulletOut out;
     out.hit = ccd.calcTimeOfImpact(pose(m.a0), pose(m.a1), pose(m.b0), pose(m.b1), res) && res.m_fraction <= btScalar(1);
     out.toi = out.hit ? double(res.m_fraction) : 1;

@@ -21,7 +21,7 @@ cast_peer::FclOut fcl_screw(const fcl::CollisionGeometryd* a, const fcl::Collisi
     req.ccd_solver_type = fcl::CCDC_CONSERVATIVE_ADVANCEMENT;
     fcl::ContinuousCollisionResultd res;
     cast_peer::FclOut out;
-    auto pose = [](const BodyState& s) { return cast_peer::fcl_pose(make_pose(s.position, s.orientation)); };
+    auto pose = [](const Pose& s) { return cast_peer::fcl_pose(make_transform(s.position, s.orientation)); };
     try {
         fcl::continuousCollide(a, pose(m.a0), pose(m.a1), b, pose(m.b0), pose(m.b1), req, res);
         out.hit = res.is_collide ? 1 : 0;

@@ -511,7 +511,7 @@ TEST(ShapeSupport, WorldSupportAppliesThePose) {
     for (const Case& c : zoo.cases) {
         SCOPED_TRACE("seed " + std::to_string(kSeed + 2) + ", shape " + c.name);
         for (int k = 0; k < 20; ++k) {
-            const Pose pose{random_rotation(rng), {uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)}};
+            const Transform pose{random_rotation(rng), {uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)}};
             const Vec3 d = random_unit(rng);
             const Vec3 s = support(*c.shape, pose, d);
             const double expected = h_closed(*c.shape, transpose(pose.rotation) * d) + dot(d, pose.translation);
@@ -530,7 +530,7 @@ TEST(ShapeBounds, ClosedFormContainsSamplesAndTight) {
         const double tol = 64 * kEps * (radius_bound(*c.shape) + 10);
         for (int k = 0; k < 30; ++k) {
             SCOPED_TRACE("pose " + std::to_string(k));
-            const Pose pose{random_rotation(rng), {uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)}};
+            const Transform pose{random_rotation(rng), {uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)}};
             Vec3 lo, hi;
             bounds(*c.shape, pose, lo, hi);
             for (int i = 0; i < 3; ++i) {

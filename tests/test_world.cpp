@@ -49,7 +49,7 @@ ShapePtr random_shape(Rng& rng, double size) {
 // `spin_axis` (world frame).
 struct Body {
     ShapePtr shape;
-    BodyState pose;
+    Pose pose;
     Vec3 velocity;
     Vec3 spin_axis{0, 0, 1};
     double spin = 0;
@@ -57,14 +57,14 @@ struct Body {
     bool alive = false;
 };
 
-BodyState end_of(const Body& b) {
-    BodyState e = b.pose;
+Pose end_of(const Body& b) {
+    Pose e = b.pose;
     e.position = b.pose.position + b.velocity;
     if (b.spin != 0) e.orientation = normalized(axis_angle(b.spin_axis, b.spin) * b.pose.orientation);
     return e;
 }
 
-Pose rigid(const BodyState& s) { return make_pose(s.position, s.orientation); }
+Transform rigid(const Pose& s) { return make_transform(s.position, s.orientation); }
 
 std::string ids(uint64_t a, uint64_t b) {
     return "(" + std::to_string(a & 0xffffffffu) + "g" + std::to_string(a >> 32) + ", " +
@@ -107,7 +107,7 @@ public:
         bodies_[i].alive = false;
         for (auto& w : worlds_) EXPECT_TRUE(w->remove(bodies_[i].id));
     }
-    void teleport(std::size_t i, const BodyState& pose) {
+    void teleport(std::size_t i, const Pose& pose) {
         bodies_[i].pose = pose;
         for (auto& w : worlds_) EXPECT_TRUE(w->set_pose(bodies_[i].id, pose));
     }

@@ -426,7 +426,7 @@ static CastResult result_head(const LocalCast& l) {
     return out;
 }
 
-CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
+CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations, ClipPolicy policy) {
     if (max_iterations == 0) max_iterations = 1;
     const Vec3 s = pose.apply_inverse(origin);
@@ -449,7 +449,7 @@ CastResult ray_cast(const Shape& shape, const Pose& pose, Vec3 origin, Vec3 tran
     return out;
 }
 
-CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
                       Vec3 translation_b, double tolerance, uint32_t max_iterations, ClipPolicy policy) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
@@ -483,12 +483,12 @@ CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, co
 
 }  // namespace cast_detail
 
-CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
+CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations) {
     return cast_detail::ray_cast(s, pose, origin, translation, tolerance, max_iterations, cast_detail::kDefaultPolicy);
 }
 
-CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
                       Vec3 translation_b, double tolerance, uint32_t max_iterations) {
     return cast_detail::shape_cast(a, pose_a, translation_a, b, pose_b, translation_b, tolerance, max_iterations,
                                    cast_detail::kDefaultPolicy);

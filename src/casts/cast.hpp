@@ -31,7 +31,7 @@ struct CastResult {
 // eps times the size of the shape seen from the ray point. A ray that starts inside hits at 0 with
 // normal -translation (unit), or, for a zero translation, the direction from the shape's local
 // origin toward the ray origin, or world +z.
-CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
+CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations);
 
 // a at pose_a moves by translation_a and b at pose_b by translation_b over the step: a ray from the
@@ -42,7 +42,7 @@ CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translat
 // -r (unit): the contact opposes the relative motion, as it does for every later hit (normal . r < 0),
 // so a solver that removes the approach velocity along the normal stops the motion into the overlap.
 // With r = 0 it is the direction from A's local origin toward B's, or world +z when they coincide.
-CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
                       Vec3 translation_b, double tolerance, uint32_t max_iterations);
 
 namespace cast_detail {
@@ -53,9 +53,9 @@ namespace cast_detail {
 enum class ClipPolicy { Keep, Restart };
 inline constexpr ClipPolicy kDefaultPolicy = ClipPolicy::Keep;
 
-CastResult ray_cast(const Shape& s, const Pose& pose, Vec3 origin, Vec3 translation, double tolerance,
+CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations, ClipPolicy policy);
-CastResult shape_cast(const Shape& a, const Pose& pose_a, Vec3 translation_a, const Shape& b, const Pose& pose_b,
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
                       Vec3 translation_b, double tolerance, uint32_t max_iterations, ClipPolicy policy);
 
 // Re-expresses the simplex about the ray point x: y_i = x - (pa_i - pb_i) for its points, plus the

@@ -302,7 +302,7 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
 
 // Calls fn(pair_support, margin) with the pair's support of A - B in A's frame.
 template <class Fn>
-auto with_pair(const CoreOf& ca, const Pose& pose_a, const CoreOf& cb, const Pose& pose_b, Fn&& fn) {
+auto with_pair(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b, Fn&& fn) {
     const RelativeFrame frame = relative_frame(pose_a, pose_b);
     const Mat3& r = frame.r;
     const Vec3 t = frame.t;
@@ -314,7 +314,7 @@ auto with_pair(const CoreOf& ca, const Pose& pose_a, const CoreOf& cb, const Pos
     });
 }
 
-Vec3 world_direction(const Pose& pose, Vec3 local) { return pose.rotation * local; }
+Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
 
 // a / |a| given |a|^2 (one square root, one division); when a is zero or its square under- or
 // overflows, the careful normalisation of a, then of `fallback`, then +x.
@@ -325,7 +325,7 @@ inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
 
 }  // namespace
 
-DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
+DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, double tolerance,
                             uint32_t max_iterations) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
@@ -365,7 +365,7 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
     return r;
 }
 
-bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Vec3& io_axis,
+bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Vec3& io_axis,
                    uint32_t* out_iterations) {
     uint32_t it = 0;
     Vec3 v_local = -pose_a.to_local_direction(io_axis);

@@ -51,7 +51,7 @@ struct DistanceResult {
 // stayed below 4e-9 in the peer tests, where 6 of 1800 random pairs ended on such a rule, and a
 // cylinder or cone rim 1e-8 of the size from another shape came out up to 1e-11 of the size too
 // far (test_gjk_curved). The distance is then too large, never too small beyond rounding.
-DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, double tolerance,
+DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, double tolerance,
                             uint32_t max_iterations);
 
 // True when a at pose_a and b at pose_b overlap or touch (within rounding). io_axis (world frame,
@@ -59,7 +59,7 @@ DistanceResult gjk_distance(const Shape& a, const Pose& pose_a, const Shape& b, 
 // When a separating axis is found it is written to io_axis (unit length); otherwise io_axis is
 // left as it was. out_iterations (may be null) receives the number of support evaluations
 // (guard: 256; a run that ends on a rounding-limit rule reports touching, i.e. true).
-bool gjk_intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Vec3& io_axis,
+bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Vec3& io_axis,
                    uint32_t* out_iterations);
 
 namespace gjk_detail {

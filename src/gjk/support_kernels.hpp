@@ -62,7 +62,7 @@ struct RelativeFrame {
     Mat3 r;
     Vec3 t;
 };
-inline RelativeFrame relative_frame(const Pose& pose_a, const Pose& pose_b) {
+inline RelativeFrame relative_frame(const Transform& pose_a, const Transform& pose_b) {
     return {transpose_mul(pose_a.rotation, pose_b.rotation), pose_a.to_local_direction(pose_b.translation - pose_a.translation)};
 }
 

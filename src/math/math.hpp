@@ -100,14 +100,12 @@ inline Mat3 to_matrix(Quat q) {
     return m;
 }
 
-// Rigid transform x -> rotation * x + translation (rotation orthonormal).
-struct Pose {
-    Mat3 rotation;
-    Vec3 translation;
-    Vec3 apply(Vec3 x) const { return rotation * x + translation; }
-    Vec3 apply_inverse(Vec3 x) const { return mul_transpose(rotation, x - translation); }
-    Vec3 to_local_direction(Vec3 d) const { return mul_transpose(rotation, d); }
-};
-inline Pose make_pose(Vec3 position, Quat orientation) { return {to_matrix(orientation), position}; }
+inline Quat conjugate(Quat q) { return {-q.x, -q.y, -q.z, q.w}; }
+
+// Rotation by `angle` radians about unit `axis`.
+inline Quat axis_angle(Vec3 axis, double angle) {
+    const double s = std::sin(0.5 * angle);
+    return {axis.x * s, axis.y * s, axis.z * s, std::cos(0.5 * angle)};
+}
 
 }  // namespace kairos

@@ -5,22 +5,13 @@
 #include <cmath>
 #include <numbers>
 
-#include "math/math.hpp"
-#include "world/world.hpp"
+#include "math/transform.hpp"
 
 namespace kairos {
 
-inline Quat conjugate(Quat q) { return {-q.x, -q.y, -q.z, q.w}; }
-
-// Rotation by `angle` radians about unit `axis`.
-inline Quat axis_angle(Vec3 axis, double angle) {
-    const double s = std::sin(0.5 * angle);
-    return {axis.x * s, axis.y * s, axis.z * s, std::cos(0.5 * angle)};
-}
-
 class Motion {
 public:
-    Motion(const BodyState& start, const BodyState& end) : start_(start), end_(end) {
+    Motion(const Pose& start, const Pose& end) : start_(start), end_(end) {
         // The turn from start to end in world frame, q_rel = q_end * q_start^-1, taken along the
         // shortest arc: q and -q are the same rotation, and w >= 0 picks the angle in [0, pi].
         // Equal orientations (q or -q, bit for bit) are no turn at all: q * q^-1 would round to an
@@ -39,18 +30,18 @@ public:
         if (!(angle_ > 0)) angle_ = 0;
     }
 
-    const BodyState& start() const { return start_; }
-    const BodyState& end() const { return end_; }
+    const Pose& start() const { return start_; }
+    const Pose& end() const { return end_; }
     Vec3 linear() const { return end_.position - start_.position; }
     // World rotation axis (unit) and total angle in [0, pi] over the step.
     Vec3 axis() const { return axis_; }
     double angle() const { return angle_; }
     bool rotates() const { return angle_ > 0; }
 
-    // Pose at time t in [0, 1]. At t = 1 the end pose is returned exactly.
-    BodyState at(double t) const {
+    // Transform at time t in [0, 1]. At t = 1 the end pose is returned exactly.
+    Pose at(double t) const {
         if (t >= 1) return end_;
-        BodyState b;
+        Pose b;
         b.position = start_.position + t * linear();
         b.orientation = rotates() ? normalized(axis_angle(axis_, t * angle_) * start_.orientation) : start_.orientation;
         return b;
@@ -65,15 +56,9 @@ public:
     }
 
 private:
-    BodyState start_, end_;
+    Pose start_, end_;
     Vec3 axis_{0, 0, 1};
     double angle_ = 0;
 };
-
-// Support of a disk of `radius` centred at the origin, perpendicular to unit `normal`.
-inline Vec3 disk_support(Vec3 normal, double radius, Vec3 d) {
-    const DiskShape disk(normal, radius);
-    return support(disk, d);
-}
 
 }  // namespace kairos

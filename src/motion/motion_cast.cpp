@@ -51,7 +51,7 @@ using namespace motion_detail;
 // An upper bound of the farthest point of s from its local origin: the corner of its local box.
 double bounding_radius(const Shape& s) {
     Vec3 lo, hi;
-    bounds(s, Pose{}, lo, hi);
+    bounds(s, Transform{}, lo, hi);
     const Vec3 m{std::fmax(std::fabs(lo.x), std::fabs(hi.x)), std::fmax(std::fabs(lo.y), std::fabs(hi.y)),
                  std::fmax(std::fabs(lo.z), std::fabs(hi.z))};
     const double r = length(m);
@@ -67,9 +67,9 @@ bool turns(const Motion& m) {
     return m.rotates() && !same;
 }
 
-Pose pose_at(const Motion& m, double t) {
-    const BodyState b = m.at(t);
-    return make_pose(b.position, turns(m) ? b.orientation : m.start().orientation);
+Transform pose_at(const Motion& m, double t) {
+    const Pose b = m.at(t);
+    return make_transform(b.position, turns(m) ? b.orientation : m.start().orientation);
 }
 
 // One body over the step: its motion and what the disk bound needs.
@@ -83,7 +83,7 @@ struct Body {
     Body(const Shape& s, const Motion& m) : shape(&s), motion(&m) {
         rotates = turns(m);
         if (rotates) {
-            const Pose p0 = pose_at(m, 0);
+            const Transform p0 = pose_at(m, 0);
             local_axis = normalized_or(p0.to_local_direction(m.axis()), {0, 0, 1});
             rho = extreme_radius(s, local_axis);
             if (!(rho >= 0) || !std::isfinite(rho)) rho = 0;
@@ -96,7 +96,7 @@ struct Body {
     // body turns by phi = angle * span about `axis`, and d.R(phi) y = (d + phi m).y + r(phi) with
     // m = d x axis and |r| <= rho |m| (phi - sin phi + 1 - cos phi); (d + phi m).y is convex in
     // phi, so its largest value over the span is at an end. Two supports.
-    double support_bound(Vec3 d, const Pose& p, double span) const {
+    double support_bound(Vec3 d, const Transform& p, double span) const {
         const Vec3 s0 = p.rotation * support(*shape, p.to_local_direction(d));
         double h = dot(d, s0);
         if (!rotates || !(span > 0)) return h;
@@ -123,7 +123,7 @@ struct Body {
 };
 
 // Casts body x (at pose px, fattened by a disk of radius rx) against body y likewise.
-CastResult fattened_cast(const Body& x, const Pose& px, double rx, Vec3 tx, const Body& y, const Pose& py, double ry,
+CastResult fattened_cast(const Body& x, const Transform& px, double rx, Vec3 tx, const Body& y, const Transform& py, double ry,
                          Vec3 ty, double tolerance, uint32_t max_iterations) {
     // The disks and sums are stack objects: their reference counts go up and down but never
     // reach zero, so nothing is deleted; the caller's shapes keep their own references.
@@ -161,8 +161,8 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
         if (out_stats) *out_stats = stats;
         const double reach = 2 * (radius_a + radius_b);
         const double cast_tolerance = reach > 0 && delta > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
-        return shape_cast(a, make_pose(ma.start().position, ma.start().orientation), ma.linear(), b,
-                          make_pose(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance, max_iterations);
+        return shape_cast(a, make_transform(ma.start().position, ma.start().orientation), ma.linear(), b,
+                          make_transform(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance, max_iterations);
     }
 
     const Body body_a(a, ma), body_b(b, mb);
@@ -176,7 +176,7 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
 
     uint32_t iterations = 0;
     double t0 = 0;
-    Pose pa = pose_at(ma, 0), pb = pose_at(mb, 0);
+    Transform pa = pose_at(ma, 0), pb = pose_at(mb, 0);
     // Distance at the current poses. A FullSimplex claim is checked by a cast with no motion and,
     // when that finds the shapes apart, measured again at a coarse tolerance. (Written when GJK
     // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; gjk.hpp now rejects
@@ -329,7 +329,7 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
         // half as wide as one about the start) and its position at t0, cast with its translation.
         const double tm = 0.5 * (t0 + t1);
         const double ra = body_a.disk(t0, tm), rb = body_b.disk(t0, tm);
-        Pose qa = pa, qb = pb;
+        Transform qa = pa, qb = pb;
         if (body_a.rotates) qa.rotation = pose_at(ma, tm).rotation;
         if (body_b.rotates) qb.rotation = pose_at(mb, tm).rotation;
         const Vec3 ta = (t1 - t0) * ma.linear(), tb = (t1 - t0) * mb.linear();

@@ -5,7 +5,7 @@
 
 namespace kairos {
 
-void bounds(const Shape& s, const Pose& pose, Vec3& out_min, Vec3& out_max) {
+void bounds(const Shape& s, const Transform& pose, Vec3& out_min, Vec3& out_max) {
     // The extent along world axis e is e.support(e); the minimum is -(-e).support(-e).
     for (int axis = 0; axis < 3; ++axis) {
         Vec3 e{};

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "math/math.hpp"
+#include "math/transform.hpp"
 
 namespace kairos {
 
@@ -202,12 +202,12 @@ inline Vec3 support(const Shape& s, Vec3 d) {
 }
 
 // Support of the shape placed at `pose`, in world frame.
-inline Vec3 support(const Shape& s, const Pose& pose, Vec3 world_direction) {
+inline Vec3 support(const Shape& s, const Transform& pose, Vec3 world_direction) {
     return pose.apply(support(s, pose.to_local_direction(world_direction)));
 }
 
 // Tight axis-aligned box of the shape at `pose` (world frame), from six support queries.
-void bounds(const Shape& s, const Pose& pose, Vec3& out_min, Vec3& out_max);
+void bounds(const Shape& s, const Transform& pose, Vec3& out_min, Vec3& out_max);
 
 // Convex hull construction (hull.cpp).
 enum class HullStatus { Ok, Empty, NonFinite, Collinear };

@@ -22,7 +22,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-Pose rigid(const BodyState& s) { return make_pose(s.position, s.orientation); }
+Transform rigid(const Pose& s) { return make_transform(s.position, s.orientation); }
 
 // Grows a box by `m` on every side.
 Aabb grown(const Aabb& b, double m) { return {b.min - Vec3{m, m, m}, b.max + Vec3{m, m, m}}; }
@@ -47,13 +47,13 @@ World::~World() {
         if (o.alive) o.shape->release();
 }
 
-Aabb World::tight_box(const Shape& shape, const BodyState& pose, Vec3 translation) const {
+Aabb World::tight_box(const Shape& shape, const Pose& pose, Vec3 translation) const {
     Aabb b;
     bounds(shape, rigid(pose), b.min, b.max);
     return grown(b, box_margin(b, settings_.tolerance) + settings_.tolerance * max_abs(translation));
 }
 
-uint64_t World::add(const Shape& shape, const BodyState& pose, uint64_t user_data) {
+uint64_t World::add(const Shape& shape, const Pose& pose, uint64_t user_data) {
     // Room for this slot's later removal, taken now so that remove() never allocates.
     if (free_slots_.capacity() < objects_.size() + 1)
         free_slots_.reserve(std::max<size_t>(2 * free_slots_.capacity(), objects_.size() + 1));
@@ -118,7 +118,7 @@ bool World::remove(uint64_t id) {
     return true;
 }
 
-bool World::set_pose(uint64_t id, const BodyState& pose) {
+bool World::set_pose(uint64_t id, const Pose& pose) {
     Object* o = find_mutable(id);
     if (o == nullptr) return false;
     const Aabb box = tight_box(*o->shape, pose, {});
@@ -131,7 +131,7 @@ bool World::set_pose(uint64_t id, const BodyState& pose) {
     return true;
 }
 
-bool World::move(uint64_t id, const BodyState& end) {
+bool World::move(uint64_t id, const Pose& end) {
     Object* o = find_mutable(id);
     if (o == nullptr) return false;
     if (!o->moving) moved_.push_back(index_of(id));  // may throw; nothing has changed yet
@@ -172,8 +172,8 @@ World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) co
     const double h = std::fmax(dot(local_axis, support(*o.shape, local_axis)), -dot(local_axis, support(*o.shape, -local_axis)));
     const double ball = std::sqrt(rho * rho + h * h);
     Aabb rel0, rel1;
-    bounds(*o.shape, Pose{s.start.rotation, {}}, rel0.min, rel0.max);
-    bounds(*o.shape, Pose{to_matrix(o.end.orientation), {}}, rel1.min, rel1.max);
+    bounds(*o.shape, Transform{s.start.rotation, {}}, rel0.min, rel0.max);
+    bounds(*o.shape, Transform{to_matrix(o.end.orientation), {}}, rel1.min, rel1.max);
     Aabb rel;
     for (int k = 0; k < 3; ++k) {
         // The disk's half extent along world axis k.
@@ -275,7 +275,7 @@ struct SweptSupport {
     double shift;     // v . translation
 };
 
-SweptSupport swept_support(const Shape& s, const Pose& start, Vec3 translation, bool rotates, Vec3 axis, double disk,
+SweptSupport swept_support(const Shape& s, const Transform& start, Vec3 translation, bool rotates, Vec3 axis, double disk,
                            Vec3 v) {
     SweptSupport r;
     r.hi0 = dot(v, support(s, start, v));
@@ -369,8 +369,8 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
             Vec3 axis = seed;
             if (!(dot(axis, axis) > 0)) axis = (sb.start.translation + sb.translation) - (sa.start.translation + sa.translation);
             uint32_t it = 0;
-            const BodyState end_a = swept_[ia] ? oa.end : oa.pose;
-            const BodyState end_b = swept_[ib] ? ob.end : ob.pose;
+            const Pose end_a = swept_[ia] ? oa.end : oa.pose;
+            const Pose end_b = swept_[ib] ? ob.end : ob.pose;
             if (!gjk_intersect(*oa.shape, rigid(end_a), *ob.shape, rigid(end_b), axis, &it)) {
                 next_axes_.push_back({key, id_a, id_b, axis});
             }

@@ -10,17 +10,11 @@
 #include <vector>
 
 #include "broadphase/broadphase.hpp"
-#include "math/math.hpp"
+#include "math/transform.hpp"
 #include "shapes/shape.hpp"
 
 namespace kairos {
 
-// Position and orientation of a body (the orientation kept as a unit quaternion, since motions
-// interpolate it).
-struct BodyState {
-    Vec3 position;
-    Quat orientation;
-};
 
 // The first contact of a pair in a step. World frame.
 struct Contact {
@@ -58,8 +52,8 @@ class World {
 public:
     struct Object {
         const Shape* shape = nullptr;  // holds one reference while alive
-        BodyState pose;                // pose now (start of the next step)
-        BodyState end;                 // pose at the end of the next step, when `moving`
+        Pose pose;                // pose now (start of the next step)
+        Pose end;                 // pose at the end of the next step, when `moving`
         Aabb box;                      // the broad phase's box now: the tight box at `pose` grown by
                                        // the margin, or larger after a turn (`loose`)
         bool moving = false;
@@ -84,15 +78,15 @@ public:
     // Adds an object (retains the shape) standing still at `pose` (finite, unit quaternion).
     // Returns 0 when no slot can be had (BroadPhase::kMaxId + 1 slots). Throws std::bad_alloc
     // with nothing changed.
-    uint64_t add(const Shape& shape, const BodyState& pose, uint64_t user_data);
+    uint64_t add(const Shape& shape, const Pose& pose, uint64_t user_data);
     // The live object with this id, or nullptr for 0, unknown and removed ids.
     const Object* find(uint64_t id) const;
     // Removes a live object (releases its shape); its id becomes stale. False for a stale id.
     bool remove(uint64_t id);
     // Teleports at once, without a sweep, and cancels a pending move. False for a stale id.
-    bool set_pose(uint64_t id, const BodyState& pose);
+    bool set_pose(uint64_t id, const Pose& pose);
     // The pose at the end of the next step (that step only). False for a stale id.
-    bool move(uint64_t id, const BodyState& end);
+    bool move(uint64_t id, const Pose& end);
 
     // Finds each pair's first contact in [0, 1], then moves every object to its end pose and
     // clears the pending moves. Fills contacts, pairs and counters.
@@ -113,7 +107,7 @@ public:
 private:
     // What the narrow phase needs of an object during one step.
     struct Sweep {
-        Pose start;          // rigid pose at t = 0
+        Transform start;          // rigid pose at t = 0
         Vec3 translation;    // of the local origin over the step
         Vec3 axis;           // world rotation axis (unit) when turning
         double disk = 0;     // disk bound of the turn (ALGORITHMS.md §4); 0 when not turning
@@ -126,7 +120,7 @@ private:
         Vec3 axis;           // world frame, from id_a's object toward id_b's
     };
 
-    Aabb tight_box(const Shape& shape, const BodyState& pose, Vec3 translation) const;
+    Aabb tight_box(const Shape& shape, const Pose& pose, Vec3 translation) const;
     Object* find_mutable(uint64_t id);
     Sweep sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) const;
     void narrow_phase(const std::vector<BroadPhasePair>& bp_pairs);

@@ -356,7 +356,7 @@ void check_shape(const kairos_shape* s, const Model& m, Input& in, bool fuzz_dir
         }
     }
     check_bounds(s, m, nullptr);
-    const PoseCase pose = make_pose(in);
+    const PoseCase pose = make_transform(in);
     check_bounds(s, m, &pose);
 }
 

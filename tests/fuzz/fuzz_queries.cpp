@@ -29,7 +29,7 @@ Posed pose_shape(Input& in, const Built& shape) {
     Posed p;
     p.shape = &shape;
     if (in.rare(6)) p.null_pose = true;
-    else p.pose = make_pose(in);
+    else p.pose = make_transform(in);
     return p;
 }
 

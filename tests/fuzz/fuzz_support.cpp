@@ -272,7 +272,7 @@ PoseCase classify(const kairos_pose& pose) {
     return c;
 }
 
-PoseCase make_pose(Input& in) {
+PoseCase make_transform(Input& in) {
     kairos_pose p;
     p.position = position(in);
     p.orientation = orientation(in);
@@ -298,7 +298,7 @@ PoseCase make_pose_near(Input& in, const kairos_pose& from) {
             p.orientation = {-p.orientation.x, -p.orientation.y, -p.orientation.z, -p.orientation.w};
             break;
         default:
-            p = make_pose(in).pose;
+            p = make_transform(in).pose;
             break;
     }
     return classify(p);

@@ -149,7 +149,7 @@ struct PoseCase {
 // A rotation: identity, normalised fuzz quaternion, axis-angle, half turns, -q; or a bad one:
 // scaled off unit length by 1e-9 .. 1e3, raw bits, non-finite, tiny.
 kairos_quat orientation(Input& in);
-PoseCase make_pose(Input& in);
+PoseCase make_transform(Input& in);
 PoseCase make_pose_near(Input& in, const kairos_pose& from);  // a small step from `from`
 PoseCase classify(const kairos_pose& pose);
 // Adds the pose's expectation (INVALID_ARGUMENT, unsure) to a verdict.

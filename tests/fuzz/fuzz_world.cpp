@@ -164,7 +164,7 @@ void WorldFuzz::add() {
     if (live_.size() >= kMaxObjects || shapes_.empty()) return;
     const Built& shape = shapes_[in_.pick(static_cast<unsigned>(shapes_.size()))];
     const bool null_pose = in_.rare(8);
-    const PoseCase pose = null_pose ? PoseCase{} : make_pose(in_);
+    const PoseCase pose = null_pose ? PoseCase{} : make_transform(in_);
     const unsigned null_probe = in_.rare(32) ? 1 + in_.pick(2) : 0;  // 1: shape, 2: out
     const uint64_t user = next_user_++;
     kairos_object_id out;
@@ -208,7 +208,7 @@ void WorldFuzz::set_pose(bool as_move) {
     Object* o;
     const kairos_object_id id = choose_id(&o);
     const kairos_pose from = o != nullptr ? o->pose.pose : kairos_pose{{0, 0, 0}, {0, 0, 0, 1}};
-    const PoseCase pose = as_move ? make_pose_near(in_, from) : make_pose(in_);
+    const PoseCase pose = as_move ? make_pose_near(in_, from) : make_transform(in_);
     const bool null_pose = in_.rare(32);
     const char* fn = as_move ? "kairos_world_move" : "kairos_world_set_pose";
     const int32_t status = observe(fn, [&] {

@@ -53,7 +53,7 @@ struct LMotion {
     Real angle = 0;    // rotation per step, in [0, pi]
 
     LMotion() = default;
-    LMotion(const kairos::BodyState& s, const kairos::BodyState& e) {
+    LMotion(const kairos::Pose& s, const kairos::Pose& e) {
         p0 = {s.position.x, s.position.y, s.position.z};
         p1 = {e.position.x, e.position.y, e.position.z};
         q0 = qnormalized({s.orientation.x, s.orientation.y, s.orientation.z, s.orientation.w});
@@ -94,10 +94,10 @@ struct LMotion {
         b.t = position(t);
     }
     // The same pose rounded to double, for GJK.
-    kairos::Pose pose(Real t) const {
+    kairos::Transform pose(Real t) const {
         Body tmp;
         place(tmp, t);
-        kairos::Pose p;
+        kairos::Transform p;
         for (int i = 0; i < 3; ++i)
             p.rotation.r[i] = {double(tmp.R[3 * i]), double(tmp.R[3 * i + 1]), double(tmp.R[3 * i + 2])};
         p.translation = {double(tmp.t.x), double(tmp.t.y), double(tmp.t.z)};
@@ -166,8 +166,8 @@ struct Pair {
     Real size = 0;  // scale for tolerances: sum of the bounding radii
     Real lipschitz = 0;
 
-    Pair(const kairos::Shape& shape_a, const Body& body_a, const kairos::BodyState& a0, const kairos::BodyState& a1,
-         const kairos::Shape& shape_b, const Body& body_b, const kairos::BodyState& b0, const kairos::BodyState& b1)
+    Pair(const kairos::Shape& shape_a, const Body& body_a, const kairos::Pose& a0, const kairos::Pose& a1,
+         const kairos::Shape& shape_b, const Body& body_b, const kairos::Pose& b0, const kairos::Pose& b1)
         : sa(&shape_a), sb(&shape_b), a(body_a), b(body_b), ma(a0, a1), mb(b0, b1) {
         auto rho = [](const Body& body, const LMotion& m) {
             if (!(m.angle > 0)) return Real(0);
