@@ -31,35 +31,6 @@ Aabb union_box(const Aabb& a, const Aabb& b) {
 
 }  // namespace broadphase_detail
 
-bool first_overlap_time(const SweptAabb& a, const SweptAabb& b, double* out_t) {
-    double lo = 0, hi = 1;
-    // Overlap needs s(t) <= 0 for both separations s of an axis; s is linear, so each condition
-    // holds on a half-line of t. Its end is s0 / (s0 - s1), the swap time of the sweep.
-    auto condition = [&](double s0, double s1) {
-        if (s0 <= 0) {
-            if (s1 > 0) hi = std::min(hi, s0 / (s0 - s1));
-        } else if (s1 <= 0) {
-            lo = std::max(lo, s0 / (s0 - s1));
-        } else {
-            hi = -1;  // separated for the whole step
-        }
-    };
-    for (int k = 0; k < 3; ++k) {
-        condition(a.start.min[k] - b.start.max[k], a.end.min[k] - b.end.max[k]);
-        condition(b.start.min[k] - a.start.max[k], b.end.min[k] - a.end.max[k]);
-    }
-    if (!(lo <= hi)) return false;
-    *out_t = lo;
-    return true;
-}
-
-bool boxes_overlap(const Aabb& a, const Aabb& b) {
-    for (int k = 0; k < 3; ++k) {
-        if (a.min[k] > b.max[k] || b.min[k] > a.max[k]) return false;
-    }
-    return true;
-}
-
 uint64_t ordered_key(double x) {
     const auto u = std::bit_cast<uint64_t>(x + 0.0);  // + 0.0 turns -0.0 into +0.0
     return (u >> 63) != 0 ? ~u : u | (uint64_t{1} << 63);

@@ -9,6 +9,7 @@
 // Thread safety: none; one broad phase is used by one thread at a time.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -75,10 +76,36 @@ struct BroadPhaseCounters {
 // never do. Exact for linear coordinates up to one rounding of the crossing time
 // `s0 / (s0 - s1)` of each separation s = (min of one box) - (max of the other); the space-time
 // sweep computes its swap times with the same expression, so both agree on ties.
-bool first_overlap_time(const SweptAabb& a, const SweptAabb& b, double* out_t);
+// Inline: the sweeps call it per candidate pair from several files.
+inline bool first_overlap_time(const SweptAabb& a, const SweptAabb& b, double* out_t) {
+    double lo = 0, hi = 1;
+    // Overlap needs s(t) <= 0 for both separations s of an axis; s is linear, so each condition
+    // holds on a half-line of t. Its end is s0 / (s0 - s1), the swap time of the sweep.
+    auto condition = [&](double s0, double s1) {
+        if (s0 <= 0) {
+            if (s1 > 0) hi = std::min(hi, s0 / (s0 - s1));
+        } else if (s1 <= 0) {
+            lo = std::max(lo, s0 / (s0 - s1));
+        } else {
+            hi = -1;  // separated for the whole step
+        }
+    };
+    for (int k = 0; k < 3; ++k) {
+        condition(a.start.min[k] - b.start.max[k], a.end.min[k] - b.end.max[k]);
+        condition(b.start.min[k] - a.start.max[k], b.end.min[k] - a.end.max[k]);
+    }
+    if (!(lo <= hi)) return false;
+    *out_t = lo;
+    return true;
+}
 
 // True if two boxes overlap (closed) on all three axes.
-bool boxes_overlap(const Aabb& a, const Aabb& b);
+inline bool boxes_overlap(const Aabb& a, const Aabb& b) {
+    for (int k = 0; k < 3; ++k) {
+        if (a.min[k] > b.max[k] || b.min[k] > a.max[k]) return false;
+    }
+    return true;
+}
 
 // Sorts pairs by (a, b), stable (equal pairs keep their order). Ids below 2^30.
 void sort_pairs(std::vector<BroadPhasePair>& pairs, std::vector<BroadPhasePair>& scratch);
