@@ -48,14 +48,15 @@ KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, ka
         require_struct_size(settings, settings->struct_size, sizeof(kairos_world_settings), fn, "settings");
         const int32_t bp = settings->broad_phase;
         if (bp != KAIROS_BROAD_PHASE_SPACETIME_SAP && bp != KAIROS_BROAD_PHASE_ENCAPSULATING_SAP &&
-            bp != KAIROS_BROAD_PHASE_BRUTE_FORCE)
+            bp != KAIROS_BROAD_PHASE_BRUTE_FORCE && bp != KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED)
             fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "settings->broad_phase %d is not a KAIROS_BROAD_PHASE_* value", bp);
         const QuerySettings qs = read_query_settings(&settings->query, fn, "settings->query");
         require_pointer(out, fn, "out");
         WorldSettings ws;
-        ws.broad_phase = bp == KAIROS_BROAD_PHASE_ENCAPSULATING_SAP ? BroadPhaseKind::EncapsulatingSap
-                         : bp == KAIROS_BROAD_PHASE_BRUTE_FORCE    ? BroadPhaseKind::BruteForce
-                                                                   : BroadPhaseKind::SpacetimeSap;
+        ws.broad_phase = bp == KAIROS_BROAD_PHASE_ENCAPSULATING_SAP       ? BroadPhaseKind::EncapsulatingSap
+                         : bp == KAIROS_BROAD_PHASE_BRUTE_FORCE          ? BroadPhaseKind::BruteForce
+                         : bp == KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED ? BroadPhaseKind::SpacetimeSapQueued
+                                                                         : BroadPhaseKind::SpacetimeSap;
         ws.tolerance = qs.tolerance;
         ws.max_iterations = qs.max_iterations;
         *out = new kairos_world(ws);

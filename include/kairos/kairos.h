@@ -79,19 +79,19 @@ extern "C" {
  * Status codes. Values are explicit and never renumbered; new codes take new values.
  */
 #define KAIROS_OK                          0
-#define KAIROS_ERROR_NULL_ARGUMENT        -1  /* a required pointer was NULL */
-#define KAIROS_ERROR_INVALID_ARGUMENT     -2  /* NaN or infinite number, size <= 0, non-unit quaternion, singular matrix, unknown enum value */
-#define KAIROS_ERROR_STRUCT_SIZE          -3  /* struct_size too small, or a larger struct with a non-zero unknown tail */
-#define KAIROS_ERROR_DEGENERATE           -4  /* input that names no shape: an empty point set, a triangle of collinear points */
-#define KAIROS_ERROR_STALE_ID             -5  /* an object id that is 0, unknown, or of a removed object */
-#define KAIROS_ERROR_OUT_OF_MEMORY        -6  /* an allocation failed; nothing was changed */
-#define KAIROS_ERROR_NOT_IMPLEMENTED      -7  /* declared in the contract, not yet built in this version */
-#define KAIROS_ERROR_UNSUPPORTED_VERSION  -8  /* kairos_get_api was asked for an ABI version this library does not provide */
-#define KAIROS_ERROR_INTERNAL             -9  /* a bug in Kairos: please report it with kairos_last_error() */
-#define KAIROS_ERROR_LIMIT               -10  /* a count beyond what the library supports (e.g. more than 2^32 - 1 objects) */
+#define KAIROS_ERROR_NULL_ARGUMENT        (-1)  /* a required pointer was NULL */
+#define KAIROS_ERROR_INVALID_ARGUMENT     (-2)  /* NaN or infinite number, size <= 0, non-unit quaternion, singular matrix, unknown enum value */
+#define KAIROS_ERROR_STRUCT_SIZE          (-3)  /* struct_size too small, or a larger struct with a non-zero unknown tail */
+#define KAIROS_ERROR_DEGENERATE           (-4)  /* input that names no shape: an empty point set, a triangle of collinear points */
+#define KAIROS_ERROR_STALE_ID             (-5)  /* an object id that is 0, unknown, or of a removed object */
+#define KAIROS_ERROR_OUT_OF_MEMORY        (-6)  /* an allocation failed; nothing was changed */
+#define KAIROS_ERROR_NOT_IMPLEMENTED      (-7)  /* declared in the contract, not yet built in this version */
+#define KAIROS_ERROR_UNSUPPORTED_VERSION  (-8)  /* kairos_get_api was asked for an ABI version this library does not provide */
+#define KAIROS_ERROR_INTERNAL             (-9)  /* a bug in Kairos: please report it with kairos_last_error() */
+#define KAIROS_ERROR_LIMIT               (-10)  /* a count beyond what the library supports (e.g. more than 2^32 - 1 objects) */
 
 /* Which rule ended an iteration (distance_result.termination, cast_result.termination).
- * See ALGORITHMS.md section 2 for the rules. */
+ * See docs/algorithms.md section 2 for the rules. */
 #define KAIROS_TERMINATION_NONE              0  /* no iteration was needed (e.g. a zero-length ray) */
 #define KAIROS_TERMINATION_RELATIVE_ERROR    1  /* ||v||^2 - v.w <= tolerance * ||v||^2 (distance within tolerance) */
 #define KAIROS_TERMINATION_NEAR_CONTACT      2  /* ||v||^2 <= eps * max ||y||^2: touching within rounding */
@@ -107,6 +107,11 @@ extern "C" {
 #define KAIROS_BROAD_PHASE_SPACETIME_SAP     0  /* default: space-time sweep and prune, pairs at their first overlap moment */
 #define KAIROS_BROAD_PHASE_ENCAPSULATING_SAP 1  /* sweep and prune on boxes swept over the whole step (false positives) */
 #define KAIROS_BROAD_PHASE_BRUTE_FORCE       2  /* exact 4D box overlap of every pair, O(n^2): a reference */
+/* The talks' space-time sweep and prune exactly (docs/algorithms.md): one sorted endpoint array
+ * per axis, each swap of two endpoints queued at the time it happens in a heap and done in time
+ * order. Same pairs as SPACETIME_SAP; costs O((n + s) log n) per step for s swaps, which grows
+ * with crowding and speed (SPACETIME_SAP sorts per region instead, and is the faster default). */
+#define KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED 3
 
 /* How far a quaternion's length may differ from 1 before it is rejected. */
 #define KAIROS_QUAT_TOLERANCE 1e-6
@@ -157,7 +162,7 @@ KAIROS_API uint32_t kairos_version(void);
 /* ---------------------------------------------------------------------------------------------
  * Shapes. Every constructor writes a new shape with one reference to *out, which the caller
  * owns and gives back with kairos_shape_release. Sizes must be finite and > 0 unless noted.
- * Frames are those of C_API.md "Primitive frames".
+ * Frames are those of docs/c-api.md "Primitive frames".
  */
 
 /* Ball of the given radius centred at the local origin. */

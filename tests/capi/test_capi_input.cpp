@@ -359,7 +359,7 @@ TEST(WorldInput, Create) {
     b.struct_size = 4;
     EXPECT_TRUE(Rejected(kairos_world_create(&b, &w), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
     b = s;
-    b.broad_phase = 3;
+    b.broad_phase = 4;
     EXPECT_TRUE(Rejected(kairos_world_create(&b, &w), KAIROS_ERROR_INVALID_ARGUMENT, "settings->broad_phase"));
     b = s;
     b.query.tolerance = kNaN;

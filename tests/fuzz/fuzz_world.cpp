@@ -78,9 +78,9 @@ bool WorldFuzz::create() {
         case 0: use = false; break;
         case 1:
         case 2:
-        case 3: buf.s.broad_phase = static_cast<int32_t>(in_.pick(3)); break;
+        case 3: buf.s.broad_phase = static_cast<int32_t>(in_.pick(4)); break;
         case 4: {
-            static const int32_t bad[4] = {3, -1, 0x7fffffff, static_cast<int32_t>(0x80000000u)};
+            static const int32_t bad[4] = {4, -1, 0x7fffffff, static_cast<int32_t>(0x80000000u)};
             buf.s.broad_phase = bad[in_.pick(4)];
             v.require(KAIROS_ERROR_INVALID_ARGUMENT);
             break;
@@ -93,11 +93,11 @@ bool WorldFuzz::create() {
             else buf.s.struct_size = sizeof(kairos_world_settings) + 16;
             if (k == 3) buf.tail[in_.pick(16)] = static_cast<unsigned char>(1 + in_.pick(255));
             if (k != 2) v.require(KAIROS_ERROR_STRUCT_SIZE);
-            buf.s.broad_phase = static_cast<int32_t>(in_.pick(3));
+            buf.s.broad_phase = static_cast<int32_t>(in_.pick(4));
             break;
         }
         default: {
-            buf.s.broad_phase = static_cast<int32_t>(in_.pick(3));
+            buf.s.broad_phase = static_cast<int32_t>(in_.pick(4));
             const SettingsCase q = make_settings(in_);
             if (q.use) buf.s.query = q.settings;
             expect_settings(q, v);
