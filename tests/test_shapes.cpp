@@ -47,7 +47,7 @@ std::map<const Shape*, std::vector<Vec3>>& hull_inputs() {
 double norm_xy(Vec3 d) { return std::hypot(d.x, d.y); }
 double norm3(Vec3 d) { return std::hypot(d.x, d.y, d.z); }
 
-// Closed-form support function h(d) = max over the shape of d.x (ALGORITHMS.md section 1).
+// Closed-form support function h(d) = max over the shape of d.x (docs/algorithms.md section 1).
 double h_closed(const Shape& s, Vec3 d) {
     switch (s.kind()) {
         case ShapeKind::Point:

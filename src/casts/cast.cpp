@@ -1,7 +1,7 @@
 // GJK ray cast and shape cast loops, instantiated per pair of support kinds (no virtual call, no
 // allocation). Shape casts run in A's local frame; results go back to the world frame.
 //
-// The simplex after a clip (ALGORITHMS.md §3 allows both): kept and re-expressed about the new
+// The simplex after a clip (docs/algorithms.md §3 allows both): kept and re-expressed about the new
 // ray point (ClipPolicy::Keep, the default) or restarted from the last support point (Restart).
 // Measured by bench/bench_cast on its fixed sets of 512 casts (bench/results/cast.csv, one run,
 // median ns per cast / mean iterations, Keep against Restart):

@@ -2,7 +2,7 @@
 // and of two convex shapes moving by constant translations over one step.
 //
 // Source: van den Bergen, "Ray casting against general convex objects with application to
-// continuous collision detection" (2004) and his GJK talks (ALGORITHMS.md §3). Each support plane
+// continuous collision detection" (2004) and his GJK talks (docs/algorithms.md §3). Each support plane
 // of C that separates the ray point x from C is a clipping plane: lambda advances to where the ray
 // crosses it, which is a lower bound of the hit. The iteration stops when ||v||^2 <= eps^2 max ||y||^2
 // (v = x - c, c the point of the current simplex closest to x, y = x - p for the simplex's points).

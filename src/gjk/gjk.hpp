@@ -2,7 +2,7 @@
 // points and the boolean intersection test with a cached separating axis.
 //
 // Source: Gilbert, Johnson, Keerthi, "A fast procedure for computing the distance between complex
-// objects in three-dimensional space" (1988), and van den Bergen's talks on GJK (ALGORITHMS.md §2):
+// objects in three-dimensional space" (1988), and van den Bergen's talks on GJK (docs/algorithms.md §2):
 // determinants cached per subset bit mask, the seven termination rules, the separating-axis early
 // out of the intersection test.
 #pragma once

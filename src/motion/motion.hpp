@@ -1,5 +1,5 @@
 // Motion over one step: the local origin moves linearly and the orientation turns at constant
-// angular velocity about a fixed world axis along the shortest arc (C_API.md, ALGORITHMS.md §4).
+// angular velocity about a fixed world axis along the shortest arc (docs/c-api.md, docs/algorithms.md §4).
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,5 @@
-// Motion cast by disk bounds with bisection (see motion_cast.hpp and ALGORITHMS.md §4). No heap
+// Motion cast: conservative advancement, with disk bounds and bisection as the fallback (see
+// motion_cast.hpp and docs/algorithms.md §4). No heap
 // allocation: the fattened shapes live on the stack for one window each.
 #include "motion/motion_cast.hpp"
 

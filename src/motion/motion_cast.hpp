@@ -1,7 +1,7 @@
 // Motion cast: the first contact of two convex shapes that translate and rotate over one step, by
-// disk bounds on the rotation and GJK shape casts of the fattened shapes (ALGORITHMS.md §4).
+// disk bounds on the rotation and GJK shape casts of the fattened shapes (docs/algorithms.md §4).
 //
-// Source: van den Bergen's talks on continuous collision detection (ALGORITHMS.md §4): over an
+// Source: van den Bergen's talks on continuous collision detection (docs/algorithms.md §4): over an
 // interval a body turning by angle a about an axis through its local origin stays inside its pose
 // at the interval's start plus a disk of radius 2 rho sin(a / 2) perpendicular to the axis (rho
 // the extreme radius about the axis). Casting the fattened shapes gives a lower bound of the time
@@ -60,7 +60,7 @@ inline constexpr uint32_t kMaxMotionSteps = 4096;
 namespace motion_detail {
 
 // How the windows advance.
-// - DiskBisection: ALGORITHMS.md §4 as written: fattened casts only; t0 advances to each clip (or
+// - DiskBisection: docs/algorithms.md §4 as written: fattened casts only; t0 advances to each clip (or
 //   past a window the cast misses), and a window whose fattened shapes touch at t0 is halved.
 // - Hybrid: each distance query also gives a conservative-advancement step (the separation along
 //   the distance's axis, and the certified distance, against bounds on how fast they can shrink);

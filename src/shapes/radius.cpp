@@ -26,7 +26,7 @@ double rim_radius(double r, double h, Vec3 u) {
     return std::sqrt(std::max(0.0, r * r + h * h - nearest * nearest));
 }
 
-// Upper bound from K support samples in the plane perpendicular to u (ALGORITHMS.md §4): the
+// Upper bound from K support samples in the plane perpendicular to u (docs/algorithms.md §4): the
 // farthest point p* of the shape's projection lies within pi/K of some sample w_k, and
 // h(w_k) >= w_k . p* >= R cos(pi/K).
 double sampled_radius(const Shape& s, Vec3 u) {

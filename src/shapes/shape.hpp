@@ -26,7 +26,7 @@ enum class ShapeKind : uint8_t {
     MinkowskiSum, // a + b
     HullOfTwo,    // conv(a u b)
     Disk,         // radius about the origin, perpendicular to a unit normal: internal, the
-                  // rotation bound of a turning shape (ALGORITHMS.md §4); not in the C API
+                  // rotation bound of a turning shape (docs/algorithms.md §4); not in the C API
 };
 
 // Base of every shape. Reference counted (atomic), immutable after construction. Composites

@@ -32,7 +32,7 @@ Aabb shifted(const Aabb& b, Vec3 d) { return {b.min + d, b.max + d}; }
 double max_extent(const Aabb& b) { return max_abs(b.max - b.min); }
 
 // Margin added to every box: the casts report a hit once the shapes are within `tolerance`
-// times their size (C_API.md "Tolerances"), so boxes that stay that far apart must still meet;
+// times their size (docs/c-api.md "Tolerances"), so boxes that stay that far apart must still meet;
 // and a few ulps of the coordinates for the rounding of the support points.
 double box_margin(const Aabb& b, double tolerance) {
     return tolerance * max_extent(b) + 8 * kEps * std::fmax(max_abs(b.min), max_abs(b.max));
@@ -143,7 +143,7 @@ bool World::move(uint64_t id, const Pose& end) {
 // The motion of a moving object over the step and its boxes at t = 0 and t = 1, each coordinate
 // linear in between, holding the shape at every moment of the step.
 // Translation only: the tight boxes at both ends (a box translated linearly is exact).
-// Turning (ALGORITHMS.md §4): relative to its origin the shape at time t lies in its start
+// Turning (docs/algorithms.md §4): relative to its origin the shape at time t lies in its start
 // shape grown by the disk of radius 2 rho sin(angle / 2) perpendicular to the axis, and also in
 // its end shape grown by that disk (turning back from the end); and within the ball of radius
 // sqrt(rho^2 + h^2) (h the extent along the axis). The box of the intersection of the three,
@@ -352,7 +352,7 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
         if (!sa.rotates && !sb.rotates) {
             r = shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
         } else {
-            // A turn: the motion cast (disk bounds with bisection, ALGORITHMS.md §4). It takes no
+            // A turn: the motion cast (conservative advancement, docs/algorithms.md §4). It takes no
             // cached axis, so the cached one serves only the separating-plane test above.
             const Motion ma(oa.pose, swept_[ia] ? oa.end : oa.pose);
             const Motion mb(ob.pose, swept_[ib] ? ob.end : ob.pose);

@@ -1,6 +1,6 @@
 // The world: objects with shapes, poses and pending moves, addressed by generation-checked ids,
 // and the step that finds each pair's first contact (broad phase, then narrow phase;
-// ALGORITHMS.md §6).
+// docs/algorithms.md §6).
 //
 // Thread safety: none; a world is used by one thread at a time.
 #pragma once
@@ -44,7 +44,7 @@ struct StepCounters {
 
 struct WorldSettings {
     BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
-    double tolerance = 1e-10;      // relative accuracy of the casts (C_API.md "Tolerances")
+    double tolerance = 1e-10;      // relative accuracy of the casts (docs/c-api.md "Tolerances")
     uint32_t max_iterations = 256; // a guard only
 };
 
@@ -110,10 +110,10 @@ private:
         Transform start;          // rigid pose at t = 0
         Vec3 translation;    // of the local origin over the step
         Vec3 axis;           // world rotation axis (unit) when turning
-        double disk = 0;     // disk bound of the turn (ALGORITHMS.md §4); 0 when not turning
+        double disk = 0;     // disk bound of the turn (docs/algorithms.md §4); 0 when not turning
         bool rotates = false;
     };
-    // A separating axis found for a pair, kept for its next step (ALGORITHMS.md §2).
+    // A separating axis found for a pair, kept for its next step (docs/algorithms.md §2).
     struct CachedAxis {
         uint64_t key;        // slot pair (lower slot << 32 | higher slot)
         uint64_t id_a, id_b; // the ids it was found for (a slot's next occupant must not use it)

@@ -111,7 +111,7 @@ const std::vector<Vr>& unit_directions() {
     return dirs;
 }
 
-// The pose of a motion at time t (C_API.md: linear position; constant angular velocity about a
+// The pose of a motion at time t (docs/c-api.md: linear position; constant angular velocity about a
 // fixed axis along the shortest arc), in long double.
 void motion_at(const kairos_motion& m, real t, kairos_quat& q_out, Vr& p_out) {
     const Vr p0 = to_real(m.start.position), p1 = to_real(m.end.position);

@@ -12,7 +12,7 @@
 
 #include "kairos/kairos.h"
 
-// Hulls of every non-empty finite set are shapes (C_API.md "Version 0.2 additions"), so with 0
+// Hulls of every non-empty finite set are shapes (docs/c-api.md "Version 0.2 additions"), so with 0
 // KAIROS_ERROR_DEGENERATE is accepted for count 0 only; 1 accepts it for every hull.
 #ifndef KAIROS_FUZZ_ALLOW_DEGENERATE_HULL
 #define KAIROS_FUZZ_ALLOW_DEGENERATE_HULL 0
@@ -214,7 +214,7 @@ Placed place(const Model& m, const kairos_quat& q, const Vr& position);
 real support_value(const Placed& p, const Vr& d);
 // Lower bound of the distance: the gap between the shapes along unit u (negative: overlap along u).
 real gap(const Placed& a, const Placed& b, const Vr& u);
-// The pose of a motion at time t (C_API.md: the position linear in t; the orientation turning at
+// The pose of a motion at time t (docs/c-api.md: the position linear in t; the orientation turning at
 // constant angular velocity about a fixed world axis along the shortest arc).
 void motion_at(const kairos_motion& m, real t, kairos_quat& q_out, Vr& p_out);
 // Radius of a ball about the local origin that lies inside the shape: 0 when the origin alone is
