@@ -697,7 +697,7 @@ Answer run_fcl(Method m, const Case& k) {
     fcl::ContinuousCollisionRequestd req;
     req.gjk_solver_type = fcl::GST_INDEP;
     req.ccd_solver_type = fcl::CCDC_CONSERVATIVE_ADVANCEMENT;
-    // Translation: CCDM_TRANS; rotation: CCDM_SCREW, FCL's only working rotation mode (PEERS.md).
+    // Translation: CCDM_TRANS; rotation: CCDM_SCREW, FCL's only working rotation mode (docs/peers.md).
     req.ccd_motion_type = k.type == QType::Motion ? fcl::CCDM_SCREW : fcl::CCDM_TRANS;
     fcl::ContinuousCollisionResultd res;
     Pose ea = k.pa, eb = k.pb;

@@ -573,7 +573,7 @@ TEST(BroadPhase, BitIdenticalTwice) {
 }
 
 // Uniform scene of unit cubes filling 10 % of the volume, every object moving 5 % of a box per
-// step in a random direction: the figure PEERS.md quotes (about 9 swaps per moving object per
+// step in a random direction: the figure docs/peers.md quotes (about 9 swaps per moving object per
 // step at 1k, 45 at 10k). Printed for comparison; bounded loosely so the scene stays meaningful.
 TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
     for (int n : {1000, 10000}) {

@@ -77,7 +77,7 @@ TEST(CastPeerBullet, SubsimplexCastAgainstOracle) {
         std::snprintf(name, sizeof name, "%s/%s", kind_name(ka), kind_name(kb));
         kt.print("kairos", name);
         bt.print("bullet64", name);
-        // The harness is sound when Bullet agrees with the oracle where PEERS.md found it reliable
+        // The harness is sound when Bullet agrees with the oracle where docs/peers.md found it reliable
         // (polytopes). Elsewhere its disagreements are findings, recorded in the output: with a
         // capsule (radius as margin) against a hull it is late in about a third of the hits, by up
         // to half the step, while Kairos and the oracle agree (and Kairos's contact points are

@@ -1,6 +1,6 @@
 // Peer cross-check: FCL's continuousCollide with translation motion and conservative advancement
 // (GST_INDEP), every call in a forked child, against the long double oracle. Its known misses
-// (PEERS.md: a step landing exactly on the contact) are counted and printed, not asserted; the
+// (docs/peers.md: a step landing exactly on the contact) are counted and printed, not asserted; the
 // test asserts that the harness agrees with the oracle on most casts.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Peer cross-check: FCL's continuousCollide with screw motion and zero translation (pure rotation,
-// the only FCL rotation mode that works; PEERS.md), conservative advancement, GST_INDEP, every call
+// the only FCL rotation mode that works; docs/peers.md), conservative advancement, GST_INDEP, every call
 // in a forked child, against the motion reference, beside Kairos on the same motions. FCL's known
 // failures (early answers, misses, crashes) are printed, not asserted; Kairos' are asserted.
 #include <gtest/gtest.h>

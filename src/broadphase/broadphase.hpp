@@ -1,6 +1,6 @@
 // Broad phase over one step: pairs of axis-aligned boxes that overlap at some moment of the step.
 //
-// Source: the talks' "space-time sweep and prune with queued swaps" (ALGORITHMS.md §5). Each
+// Source: the talks' "space-time sweep and prune with queued swaps" (docs/algorithms.md §5). Each
 // object has a box at the start (t = 0) and at the end (t = 1) of the step; every box coordinate
 // moves linearly in t in between. A pair is reported with the first t in [0, 1] at which its
 // boxes overlap on all three axes at once (closed boxes: touching counts as overlapping).

@@ -18,7 +18,7 @@ namespace kairos::broadphase_detail {
 //
 // One sorted list per axis makes every moving box pass every endpoint between its old and new
 // place: in a uniform scene that grows as N^(2/3) per box (about 42 swaps per box per step at 10k
-// boxes, 200 at 100k; PEERS.md). Here space is cut into columns along x, a square grid of cells
+// boxes, 200 at 100k; docs/peers.md). Here space is cut into columns along x, a square grid of cells
 // in (y, z). Each object is entered in every column its box swept over the step touches (closed
 // intervals, so boxes that touch share a column), as its swept x interval with its swept y and z
 // intervals as float spans. Per column a sweep and prune along x on the swept intervals gives the

@@ -83,6 +83,23 @@ endforeach()
 set_tests_properties(consumer_install consumer_cmake consumer_pkgconfig consumer_major
     PROPERTIES RESOURCE_LOCK kairos_consumer_dir)
 
+# ---- Embedded with add_subdirectory, with the test and benchmark packages hidden ---------------
+# Configures and builds tests/embed (the library alone, from this source tree) in a scratch
+# directory with find_package unable to see GoogleTest, Google Benchmark, the peers or
+# pkg-config, then runs its program.
+set(KAIROS_EMBED_DIR ${CMAKE_BINARY_DIR}/embed-test)
+add_test(NAME embed_add_subdirectory
+    COMMAND sh -c "rm -rf \"$1\" && \"$2\" -S \"$3\" -B \"$1\" -DKAIROS_SOURCE_DIR=\"$4\" \
+        -DCMAKE_C_COMPILER=\"$5\" -DCMAKE_CXX_COMPILER=\"$6\" \"-DCMAKE_C_FLAGS=$7\" \"-DCMAKE_CXX_FLAGS=$8\" \
+        \"-DCMAKE_EXE_LINKER_FLAGS=$9\" \
+        -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
+        -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON -DCMAKE_DISABLE_FIND_PACKAGE_fcl=ON \
+        -DCMAKE_DISABLE_FIND_PACKAGE_ccd=ON -DCMAKE_DISABLE_FIND_PACKAGE_Bullet=ON \
+        && \"$2\" --build \"$1\" && \"$1/kairos_embedder\""
+        sh ${KAIROS_EMBED_DIR} ${CMAKE_COMMAND} ${CMAKE_CURRENT_SOURCE_DIR}/embed ${PROJECT_SOURCE_DIR}
+        ${CMAKE_C_COMPILER} ${CMAKE_CXX_COMPILER} "${CMAKE_C_FLAGS}" "${CMAKE_CXX_FLAGS}" "${CMAKE_EXE_LINKER_FLAGS}")
+set_tests_properties(embed_add_subdirectory PROPERTIES LABELS consumer TIMEOUT 600)
+
 # ---- ABI check against the committed baseline (abidw/abidiff, public headers only) --------------
 if(KAIROS_ABI_CHECK)
     if(CMAKE_BUILD_TYPE MATCHES "^(RelWithDebInfo|Debug)$" OR CMAKE_C_FLAGS MATCHES "(^| )-g")

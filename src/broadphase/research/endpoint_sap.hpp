@@ -1,7 +1,7 @@
 // Sorted endpoint arrays per axis (EndpointSap), the base of the global and the queued space-time
 // sweeps. Internal to broadphase/ (namespace broadphase_detail).
 //
-// Source: the talks' space-time sweep and prune (ALGORITHMS.md §5). Per axis a sorted array of
+// Source: the talks' space-time sweep and prune (docs/algorithms.md §5). Per axis a sorted array of
 // endpoints; over the step every endpoint moves linearly from p0 (t = 0) to p1 (t = 1). Two
 // adjacent endpoints L < R swap at the root of d(t) = (1 - t) d0 + t d1 with d0 = R.p0 - L.p0 and
 // d1 = R.p1 - L.p1, that is t = d0 / (d0 - d1). Whether they swap at all depends only on the sign
