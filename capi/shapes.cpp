@@ -155,7 +155,7 @@ KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double 
         const Vec3 t = read_point(translation, fn, "translation");
         require_pointer(out, fn, "out");
         Mat3 m;
-        for (int i = 0; i < 3; ++i) m.r[i] = {linear[3 * i], linear[3 * i + 1], linear[3 * i + 2]};
+        for (std::size_t i = 0; i < 3; ++i) m.r[i] = {linear[3 * i], linear[3 * i + 1], linear[3 * i + 2]};
         // Invertible relative to its own scale: |det| against the product of the row lengths
         // (Hadamard's bound), so a uniformly tiny or huge matrix is judged like a unit one.
         const double bound = length(m.r[0]) * length(m.r[1]) * length(m.r[2]);

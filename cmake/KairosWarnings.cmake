@@ -4,6 +4,7 @@ function(kairos_warnings target)
         -Wall -Wextra -Wpedantic
         # Bit-identical results on one build: no fused multiply-add contraction, no fast-math.
         -ffp-contract=off
-        # GNU unique symbols would pin the library in memory and stop dlclose from unloading it.
-        $<$<COMPILE_LANGUAGE:CXX>:-fno-gnu-unique>)
+        # GNU unique symbols would pin the library in memory and stop dlclose from unloading it
+        # (GCC emits them; clang does not, and has no such flag).
+        $<$<AND:$<COMPILE_LANGUAGE:CXX>,$<CXX_COMPILER_ID:GNU>>:-fno-gnu-unique>)
 endfunction()

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Checks the layering of src/ (docs/LAYOUT.md): a file includes only headers of its own folder
+# Checks the layering of src/ (docs/layout.md): a file includes only headers of its own folder
 # and of the folders below it, and no file under src/ or capi/ is longer than 600 lines.
 #
 #   math < shapes < gjk < casts < motion < world      broadphase: math only      world: all

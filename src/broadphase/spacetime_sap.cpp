@@ -209,7 +209,7 @@ void RegionSap::on_step() {
     for (uint32_t c : queued_) {
         Column& col = columns_[c];
         if (col.movers == 0) continue;
-        if (8 * col.movers >= col.entries.size()) {
+        if (8 * std::size_t{col.movers} >= col.entries.size()) {
             col.max_len = 0;
             for (const Entry& e : col.entries) col.max_len = std::max(col.max_len, e.hi - e.lo);
             sweep_column(col, wanted, collect);
