@@ -3,7 +3,7 @@
 // (screw motion, zero translation, conservative advancement, GST_INDEP; forked, timed in the
 // child) and Bullet f64's btContinuousConvexCollision on the same motions, in one program and one
 // run. Each set: rotating pairs with zero translation (the one FCL rotation mode that works), every
-// case's first contact from the long double reference (tests/oracle/motion_reference.hpp).
+// case's first contact from the long double reference (tests/support/oracle/motion_reference.hpp).
 // CSV rows: median ns per query, mean GJK iterations, casts and distance queries per query,
 // time-of-impact error against the reference (median, max, over cases both hit), misses, late
 // answers (toi > reference + tolerance), hits.

@@ -1,9 +1,9 @@
 // Stability catalogue (issue 12, item 3): families of hard cases run through every method, Kairos
 // (through the public C API, kairos.h) and its peers (libccd, FCL, Bullet f64), with failure rates
 // per method and family against exact truths:
-//   - pair distance and intersection: the long-double polytope oracle (tests/oracle) on the shapes'
+//   - pair distance and intersection: the long-double polytope oracle (tests/support/oracle) on the shapes'
 //     cores (polytope, segment or point) minus the radii, from the very doubles each method is given;
-//   - translational casts and rays: the long-double cast oracle (tests/oracle/cast_oracle.hpp);
+//   - translational casts and rays: the long-double cast oracle (tests/support/oracle/cast_oracle.hpp);
 //   - rotating motions (a rod, box or capsule, against a ball): conservative advancement on the
 //     exact point-to-core distance in long double (never skips a contact), see motion_truth().
 // Every method call runs in a forked child (one child per method and family, restarted after a

@@ -9,7 +9,7 @@ find_library(KAIROS_BENCH_BULLET64_COLLISION BulletCollision-float64)
 find_library(KAIROS_BENCH_BULLET64_MATH LinearMath-float64)
 if(KAIROS_BENCH_FCL_FOUND AND KAIROS_BENCH_CCD_FOUND AND KAIROS_BENCH_BULLET64_FOUND AND KAIROS_BENCH_BULLET64_COLLISION)
     add_executable(bench_gjk ${CMAKE_CURRENT_SOURCE_DIR}/bench_gjk.cpp)
-    target_include_directories(bench_gjk PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+    target_include_directories(bench_gjk PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
     # Peers' headers as system headers; FCL's pkg-config -std=c++11 is left out on purpose.
     target_include_directories(bench_gjk SYSTEM PRIVATE ${KAIROS_BENCH_FCL_INCLUDE_DIRS} ${KAIROS_BENCH_CCD_INCLUDE_DIRS}
                                                         ${KAIROS_BENCH_BULLET64_INCLUDE_DIRS})

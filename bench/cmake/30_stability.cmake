@@ -13,7 +13,7 @@ if(KAIROS_ST_FCL_FOUND AND KAIROS_ST_CCD_FOUND AND KAIROS_ST_BULLET64_FOUND AND 
    AND KAIROS_ST_BULLET64_MATH)
     add_executable(bench_stability ${CMAKE_CURRENT_SOURCE_DIR}/stability.cpp)
     # tests/ for the long-double oracles only; Kairos itself is used through kairos.h.
-    target_include_directories(bench_stability PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+    target_include_directories(bench_stability PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
     # Peers' headers as system headers; FCL's pkg-config -std=c++11 is left out on purpose.
     target_include_directories(bench_stability SYSTEM PRIVATE ${KAIROS_ST_FCL_INCLUDE_DIRS} ${KAIROS_ST_CCD_INCLUDE_DIRS}
                                                               ${KAIROS_ST_BULLET64_INCLUDE_DIRS})

@@ -11,7 +11,7 @@ if(KAIROS_WORLD_FCL_FOUND AND KAIROS_WORLD_BULLET64_FOUND AND KAIROS_WORLD_BULLE
     add_executable(bench_world ${CMAKE_CURRENT_SOURCE_DIR}/bench_world.cpp)
     # Peers' headers as system headers; FCL's pkg-config -std=c++11 is left out on purpose.
     target_include_directories(bench_world SYSTEM PRIVATE ${KAIROS_WORLD_FCL_INCLUDE_DIRS} ${KAIROS_WORLD_BULLET64_INCLUDE_DIRS})
-    target_include_directories(bench_world PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+    target_include_directories(bench_world PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
     target_compile_definitions(bench_world PRIVATE BT_USE_DOUBLE_PRECISION)
     target_link_libraries(bench_world PRIVATE kairos_core benchmark::benchmark ${KAIROS_WORLD_FCL_LINK_LIBRARIES}
                                               ${KAIROS_WORLD_BULLET64_COLLISION} ${KAIROS_WORLD_BULLET64_MATH})

@@ -1,4 +1,4 @@
 # Core shapes: support mappings of every kind, convex hull construction, bounds, thread safety.
 kairos_gtest(test_shapes
-    SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_shapes.cpp ${CMAKE_CURRENT_SOURCE_DIR}/test_hull.cpp
+    SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/shapes/test_shapes.cpp ${CMAKE_CURRENT_SOURCE_DIR}/shapes/test_hull.cpp
     LIBS kairos_core)

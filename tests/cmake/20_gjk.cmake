@@ -1,7 +1,7 @@
 # GJK core tests: closed forms, random polytopes against the long double oracle, hard cases.
-kairos_gtest(test_gjk SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk.cpp LIBS kairos_core)
+kairos_gtest(test_gjk SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk.cpp LIBS kairos_core)
 # The same queries through the shared library's C ABI.
-kairos_gtest(test_gjk_capi SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk_capi.cpp LIBS kairos)
+kairos_gtest(test_gjk_capi SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_gjk_capi.cpp LIBS kairos)
 
 # Peer cross-checks. FCL and libccd in one executable; Bullet's double build in another (its
 # symbols clash with the float build's, so it never shares a binary with anything linking that).
@@ -12,7 +12,7 @@ if(PkgConfig_FOUND)
     pkg_check_modules(KAIROS_BULLET64 QUIET bullet-float64)
 endif()
 if(KAIROS_FCL_FOUND AND KAIROS_CCD_FOUND)
-    kairos_gtest(test_gjk_peers SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk_peers.cpp LIBS kairos_core)
+    kairos_gtest(test_gjk_peers SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_peers.cpp LIBS kairos_core)
     # pkg-config's fcl flags carry -std=c++11: take only its include directories and libraries.
     target_include_directories(test_gjk_peers SYSTEM PRIVATE ${KAIROS_FCL_INCLUDE_DIRS} ${KAIROS_CCD_INCLUDE_DIRS})
     target_link_libraries(test_gjk_peers PRIVATE ${KAIROS_FCL_LINK_LIBRARIES} ${KAIROS_CCD_LINK_LIBRARIES})
@@ -20,7 +20,7 @@ else()
     message(STATUS "test_gjk_peers skipped: FCL or libccd not found (pkg-config fcl, ccd)")
 endif()
 if(KAIROS_BULLET64_FOUND)
-    kairos_gtest(test_gjk_bullet SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk_bullet.cpp LIBS kairos_core)
+    kairos_gtest(test_gjk_bullet SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_bullet.cpp LIBS kairos_core)
     target_include_directories(test_gjk_bullet SYSTEM PRIVATE ${KAIROS_BULLET64_INCLUDE_DIRS})
     target_compile_definitions(test_gjk_bullet PRIVATE BT_USE_DOUBLE_PRECISION)
     find_library(KAIROS_BULLET64_COLLISION BulletCollision-float64)
@@ -31,4 +31,4 @@ else()
 endif()
 
 # Near contact on curved surfaces against a closed-form gap.
-kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_gjk_curved_contact.cpp LIBS kairos_core)
+kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_curved_contact.cpp LIBS kairos_core)

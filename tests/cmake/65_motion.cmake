@@ -1,2 +1,2 @@
 # Motion over a step and the rotation disk bound.
-kairos_gtest(test_motion SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/test_motion.cpp LIBS kairos_core)
+kairos_gtest(test_motion SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/motion/test_motion.cpp LIBS kairos_core)

@@ -1,5 +1,5 @@
 // Tests of the GJK ray cast and shape cast (src/casts/cast.hpp) against the long double oracles of
-// tests/oracle/cast_oracle.hpp: random casts of every pair of shape kinds, closed forms, hard cases.
+// tests/support/oracle/cast_oracle.hpp: random casts of every pair of shape kinds, closed forms, hard cases.
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Tests of the motion cast (src/motion/motion_cast.hpp) against the conservative-advancement reference of
-// tests/oracle/motion_reference.hpp and closed forms: random rotating pairs of every kind, spinning
+// tests/support/oracle/motion_reference.hpp and closed forms: random rotating pairs of every kind, spinning
 // rods through thin walls, a spinning box grazing a sphere, rotation about a point outside the hull.
 #include <gtest/gtest.h>
 
