@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cast benchmark: Kairos's shape cast over a range of tolerances against Bullet's double build
 // (btSubsimplexConvexCast) and FCL (continuousCollide, translation, conservative advancement,
 // GST_INDEP) on the same fixed random sets, in one program and one run. Writes CSV rows: median ns

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cast benchmark, Bullet's float build (btSubsimplexConvexCast) on the same fixed sets as
 // bench_cast; its own program, since the float and double builds of Bullet export the same names.
 //   bench_cast_bullet32 [out.csv]   (rows without the header; default: standard output)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK benchmark: Kairos against FCL (GST_INDEP), Bullet f64 (btGjkPairDetector) and libccd on the
 // same pre-generated random queries. Reports time per query (use --benchmark_repetitions and the
 // median aggregate) and mean GJK iterations where the library exposes them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Motion cast benchmark: Kairos's motion cast (rotation by disk bounds with bisection and
 // conservative advancement) over tolerances and rotation angles, beside FCL's continuousCollide
 // (screw motion, zero translation, conservative advancement, GST_INDEP; forked, timed in the

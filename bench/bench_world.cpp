@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Broad-phase benchmark: one step of many moving boxes in Kairos's space-time sweep (and the talks'
 // queued sweep and the encapsulating sweep) beside FCL's DynamicAABBTree manager and Bullet's
 // bt32BitAxisSweep3 and btDbvtBroadphase fed the boxes swept over the step, in one program.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by the cast benchmarks (Kairos with Bullet f64 and FCL, and Bullet f32 in its own
 // program): the fixed random sets, their oracle truth, the error summary and the CSV row.
 #pragma once

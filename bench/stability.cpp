@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stability catalogue (issue 12, item 3): families of hard cases run through every method, Kairos
 // (through the public C API, kairos.h) and its peers (libccd, FCL, Bullet f64), with failure rates
 // per method and family against exact truths:

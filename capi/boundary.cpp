@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C boundary's error buffer and input validation (see boundary.hpp).
 #include "boundary.hpp"
 

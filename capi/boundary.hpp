@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C boundary's machinery: the per-thread error message, the guard every exported function
 // runs in, and validation of caller input (pointers, numbers, poses, struct sizes).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Library information: version, status names, last error, and the dlopen function table.
 #include "boundary.hpp"
 

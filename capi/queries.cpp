@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API pair queries: distance, intersection, ray cast, shape cast, motion cast.
 #include "boundary.hpp"
 #include "casts/cast.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API shape constructors and queries: validate, then build or query the core's shapes.
 #include <cmath>
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API world: the handle, object bookkeeping, step, contacts, overlaps and step stats.
 #include <cstring>
 #include <vector>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Warning and floating-point flags shared by every Kairos target.
 function(kairos_warnings target)
     target_compile_options(${target} PRIVATE

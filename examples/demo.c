@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Kairos demo: fast and spinning objects that tunnel when checked only at the frames, and the
  * first times of impact Kairos finds for them, each beside its closed-form answer. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Kairos scene: a few thousand objects (drifting dust, bullets, thin walls, spinning rods) stepped
  * through a world for a number of frames. Prints the contacts found, how many of them a check at
  * the frames alone would have missed, and the time per step by phase; draws the trajectories and

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Regenerates the cast accuracy/speed data and chart: builds the cast benchmarks (the shipped
 # RelWithDebInfo flags), runs Kairos over tolerances 1e-1 .. 1e-12 with Bullet f64 and FCL
 # conservative advancement in one program, and Bullet f32 in its own, then draws the chart.

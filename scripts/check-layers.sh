@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Checks the layering of src/ (docs/layout.md): a file includes only headers of its own folder
 # and of the folders below it, and no file under src/ or capi/ is longer than 600 lines.
 #

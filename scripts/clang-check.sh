@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The clang side of CI: builds the library, the tests and the demo with clang++ and warnings as
 # errors (build/clang), then runs clang-tidy with the repository's .clang-tidy over the library
 # sources (src/, capi/), the public header included. The gcc side is the release preset, which

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Quick start, the main job: install missing Debian packages, build Kairos (release preset), run
 # the demo (fast and spinning objects that tunnel between frames, and their times of impact),
 # step the scene of a few thousand objects (picture: build/demo/kairos_scene.png or .ppm), and

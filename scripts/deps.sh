@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared helper of the quick-start scripts: installs missing Debian packages, prints ctest summaries.
 # shellcheck shell=bash
 # Sourced by scripts/test.sh, scripts/demo.sh and .ci/run; defines functions only.

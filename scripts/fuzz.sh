@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds the libFuzzer targets of tests/fuzz and runs each for a while.
 #
 # Usage: bash scripts/fuzz.sh [SECONDS]   (default 60 seconds per target)

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Regenerates the motion cast accuracy/speed data and chart: builds bench_motion_cast (the shipped
 # RelWithDebInfo flags) and runs Kairos over tolerances 1e-1 .. 1e-10 and rotation angles up to
 # 22.5, 45, 90 and 162 degrees per step, with FCL (screw motion, zero translation, conservative

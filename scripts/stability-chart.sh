@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Regenerates the stability catalogue: builds bench_stability (the shipped RelWithDebInfo flags,
 # one build job), runs every family of hard cases through Kairos and its peers, and draws the
 # failure-rate heatmap (method x family).

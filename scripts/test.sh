@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Quick start: install missing Debian packages, then configure, build and run every test (release preset).
 #
 # Usage: bash scripts/test.sh   (as root on Debian 12 it installs what is missing; as another user

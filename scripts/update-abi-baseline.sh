@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Rewrites abi/libkairos.abi from a freshly built libkairos (for an intended, logged ABI change).
 #
 # Usage: scripts/update-abi-baseline.sh [build dir]   (default: build/release, the release preset)

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Broad-phase benchmark and chart: runs bench_world (Kairos's space-time sweeps beside FCL and
 # Bullet) and draws bench/results/world.png, the step time against N for each scene.
 #

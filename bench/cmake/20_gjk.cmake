@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # GJK distance and intersection against FCL (GST_INDEP), Bullet f64 and libccd, in one program.
 find_package(PkgConfig QUIET)
 if(PkgConfig_FOUND)

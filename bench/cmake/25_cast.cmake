@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Cast accuracy/speed chart data: Kairos over tolerances with Bullet f64 and FCL conservative
 # advancement in one program; Bullet's float build in its own (never both Bullet builds in one).
 find_package(PkgConfig QUIET)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Motion cast accuracy/speed over tolerances and rotation angles, with FCL (screw motion, zero
 # translation, conservative advancement) and Bullet f64's btContinuousConvexCollision in one program.
 find_package(PkgConfig QUIET)

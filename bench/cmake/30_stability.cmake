@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Stability catalogue: families of hard cases through Kairos (public C API) and every peer query
 # (libccd, FCL, Bullet f64), failure rates per method and family. A plain program (no Google
 # Benchmark): it counts failures against exact truths, it does not time anything.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Broad phases: Kairos's space-time sweeps against FCL's DynamicAABBTree and Bullet f64's
 # bt32BitAxisSweep3 and btDbvtBroadphase, in one program (scripts/world-chart.sh draws the chart).
 find_package(PkgConfig QUIET)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Kairos: continuous (space-time) collision detection of convex shapes. The one public C header. */
 #ifndef KAIROS_KAIROS_H
 #define KAIROS_KAIROS_H

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Boxes and times: validity and union of boxes, the exact first overlap time of two swept boxes,
 // the order-preserving key of a double, the radix sort of pairs.
 #include "broadphase/box_time.hpp"

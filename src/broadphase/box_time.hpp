@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Box helpers of the broad phases, beside the public ones of broadphase.hpp that box_time.cpp
 // defines too (first_overlap_time, boxes_overlap, ordered_key, sort_pairs). Internal to broadphase/
 // (namespace broadphase_detail).

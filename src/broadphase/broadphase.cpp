@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Broad phase: the base class (checks of the calls, pending adds and removes, moves, the step's
 // pair list) and the choice of a kind; each kind is built in its own file (factories.hpp).
 //

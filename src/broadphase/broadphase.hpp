@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Broad phase over one step: pairs of axis-aligned boxes that overlap at some moment of the step.
 //
 // Source: the talks' "space-time sweep and prune with queued swaps" (docs/algorithms.md §5). Each

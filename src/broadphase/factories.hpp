@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One factory per concrete broad phase, for BroadPhase::create; the classes stay inside their
 // files. Internal to broadphase/ (namespace broadphase_detail).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Doubles rounded outward to float, for the spans that filter candidates cheaply before the exact
 // test. Internal to broadphase/ (namespace broadphase_detail).
 #pragma once

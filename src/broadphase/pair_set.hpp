@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pair keys (two ids in one uint64_t, the smaller first) and the set of them that the sweeps keep
 // of the pairs overlapping now. Internal to broadphase/ (namespace broadphase_detail).
 #pragma once

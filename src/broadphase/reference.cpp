@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference broad phases: brute force (the exact 4D test of every pair) and the encapsulating
 // sweep (plain sweep and prune on the boxes swept over the whole step).
 #include <algorithm>

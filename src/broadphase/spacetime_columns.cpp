@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // RegionSap's columns: the column index, an object's entries (place, list, unlist), the re-keying
 // of the objects that moved, and per column the sort, the query of one entry and the exact test.
 #include "broadphase/spacetime_sap.hpp"

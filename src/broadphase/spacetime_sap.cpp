@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // RegionSap's flush, teleport and step: objects entered and removed, the overlap set kept between
 // steps, the sweep of the columns the moving objects touch; and the check of the structure.
 #include "broadphase/spacetime_sap.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The space-time sweep and prune in regions (BroadPhaseKind::SpacetimeSap, class RegionSap), the
 // default. Internal to broadphase/ (namespace broadphase_detail).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK ray cast and shape cast loops, instantiated per pair of support kinds (no virtual call, no
 // allocation). Shape casts run in A's local frame; results go back to the world frame.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK ray cast and translational shape cast: the first time of impact of a ray on a convex shape,
 // and of two convex shapes moving by constant translations over one step.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"

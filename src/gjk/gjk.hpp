@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK on the configuration-space obstacle A - B with Johnson's sub-algorithm: distance, closest
 // points and the boolean intersection test with a cached separating axis.
 //

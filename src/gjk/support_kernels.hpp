@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Support mappings of the shapes GJK and the casts specialise on, and the dispatch that picks
 // one per shape: templates, so the inner loops inline the support with no virtual call.
 //

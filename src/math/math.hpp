@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small fixed-size linear algebra for the core: vectors, 3x3 matrices, quaternions, poses.
 #pragma once
 

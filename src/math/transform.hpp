@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rigid maps and poses: Transform, the map a pose stands for (rotation matrix and translation),
 // used by every query; Pose, a body's position and orientation as the C API's kairos_pose gives
 // them (world frame), from which a Transform is made once per query.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Motion over one step: the local origin moves linearly and the orientation turns at constant
 // angular velocity about a fixed world axis along the shortest arc (docs/c-api.md, docs/algorithms.md §4).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Motion cast: conservative advancement, with disk bounds and bisection as the fallback (see
 // motion_cast.hpp and docs/algorithms.md §4). No heap
 // allocation: the fattened shapes live on the stack for one window each.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Motion cast: the first contact of two convex shapes that translate and rotate over one step, by
 // disk bounds on the rotation and GJK shape casts of the fattened shapes (docs/algorithms.md §4).
 //

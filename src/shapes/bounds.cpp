@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape queries shared by every kind: bounds from support mappings.
 #include <cmath>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hull construction (quickhull on exact orientation signs) and the hull's support mapping.
 //
 // Construction follows Barber, Dobkin and Huhdanpaa, "The Quickhull Algorithm for Convex Hulls"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact orientation predicates (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast
 // Robust Geometric Predicates", 1997) and the hull's point distances: see hull_predicates.hpp.
 #include "shapes/hull_predicates.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact geometric predicates of the hull construction: orientation signs decided exactly (a
 // floating-point filter, then floating-point expansions), and point distances used only for
 // tolerance decisions. Internal to shapes/ (namespace hull_detail).

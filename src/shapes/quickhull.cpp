@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The extreme-point searches that seed quickhull (see quickhull.hpp).
 #include "shapes/quickhull.hpp"
 

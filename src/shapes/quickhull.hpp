@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quickhull (Barber, Dobkin and Huhdanpaa 1996) on exact orientation signs: the triangle mesh
 // of a point set's hull, its faces' conflict lists and horizons (see hull.cpp's file comment for
 // the robustness argument). Internal to shapes/ (namespace hull_detail); used by hull.cpp only.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Extreme radius about an axis (see radius.hpp).
 //
 // The radius is R = max over unit w perpendicular to the axis of the support function

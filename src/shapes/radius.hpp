@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Extreme radius of a shape about an axis: the farthest any of its points lies from a line
 // through its local origin. It sizes the disk that bounds a rotating shape (docs/algorithms.md §4).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex shapes as support mappings: the immutable, reference-counted shape objects of the core.
 //
 // A shape stores only what its support mapping needs (a box is three half extents). Support

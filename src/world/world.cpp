@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The world and its step (see world.hpp): boxes over the step, broad phase, narrow phase.
 #include "world/world.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The world: objects with shapes, poses and pending moves, addressed by generation-checked ids,
 // and the step that finds each pair's first contact (broad phase, then narrow phase;
 // docs/algorithms.md §6).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ABI test: a strict C99 program linked against libkairos; exits non-zero on any wrong answer. */
 #define _POSIX_C_SOURCE 200809L
 

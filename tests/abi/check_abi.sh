@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # ABI test: compare libkairos's ABI (libabigail abidw, public headers only) with the committed baseline.
 #
 # Usage: check_abi.sh check  <libkairos.so.0> <baseline.abi> <work dir> <header dir>...

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # ABI test: libkairos exports exactly the header's kairos_* functions, under SONAME libkairos.so.0 and node KAIROS_0.
 #
 # Usage: check_exports.sh <libkairos.so.0> <kairos.h>. Environment: NM, READELF (default nm, readelf).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ABI test: load libkairos with dlopen, use it only through kairos_get_api, and check dlclose unloads it. */
 /*
  * Usage: kairos_abi_dlopen <path to libkairos.so.0>. The program is not linked against the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ABI test: pins the size and field offsets of every public struct, and the numeric constants. */
 /*
  * These values are the ABI of major version 0 on x86-64 (LP64, System V). A failure here means a

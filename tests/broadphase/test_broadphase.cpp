@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the broad phase: the space-time sweep against brute force over exact 4D box overlap.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // kairos_ray_cast and kairos_shape_cast through the shared library: results, conventions (frames,
 // normal direction, overlap at the start), and outputs left untouched on bad input.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contract regressions through the shared library (issue 11): finite inputs near the double range
 // never give NaN (a refusal naming the input instead), and kairos_motion_cast keeps its documented
 // gap bound at every tolerance, translation-only motions included.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK at the rounding limit (issue 12), through the shared library: the reported cases as
 // regressions in both argument orders, and a sweep over every pair of shape kinds at gaps built to
 // be exact. Truth comes from the construction, not from the library: B is placed so that its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Flat and lower-dimensional shapes (triangles, flat hull polygons, segments and points made as
 // hulls) in every query, through the shared library, against closed forms computed here: point to
 // triangle distance, ray against triangle, a box dropped onto a triangle, a world with a

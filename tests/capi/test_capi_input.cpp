@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input for every exported function: the right status, a message naming the argument, and
 // outputs left untouched. Runs through the shared library, as callers do.
 #include <gtest/gtest.h>

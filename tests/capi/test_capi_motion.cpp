@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // kairos_motion_cast through the shared library: a thin rod turning through a thin wall (hit that
 // translation-only casts miss), equal orientations (q and -q) giving the shape cast's answer,
 // overlap at the start, and the output left untouched on bad input.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // kairos_distance and kairos_intersect through the shared library's C ABI: answers against closed
 // forms, the axis cache round trip, and rejected input leaving outputs untouched.
 #include <gtest/gtest.h>

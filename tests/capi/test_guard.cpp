@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The guard around every exported function: each kind of C++ exception becomes a status and a
 // message, and nothing escapes. Built from the C boundary's sources, since out-of-memory and
 // internal errors cannot be provoked on purpose through the public functions.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Threads, through the shared library (run under ThreadSanitizer by the `tsan` preset): shapes
 // shared by several threads are queried, retained, released and built into composites at once;
 // each thread steps its own world over shared shapes; every answer is bit-identical to the one

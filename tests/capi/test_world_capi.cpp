@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The world through the C API (the shared library only): step, contacts, overlaps, stats, ids.
 #include <gtest/gtest.h>
 

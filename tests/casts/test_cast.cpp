@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the GJK ray cast and shape cast (src/casts/cast.hpp) against the long double oracles of
 // tests/support/oracle/cast_oracle.hpp: random casts of every pair of shape kinds, closed forms, hard cases.
 #include <gtest/gtest-spi.h>

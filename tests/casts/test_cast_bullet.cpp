@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Peer cross-check: Bullet's double build btSubsimplexConvexCast (the same GJK ray cast) and Kairos
 // on the same random casts, both judged by the long double oracle. Kairos must be exact to its
 // tolerance; Bullet's disagreements with the oracle are recorded (printed), not asserted.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Peer cross-check: FCL's continuousCollide with translation motion and conservative advancement
 // (GST_INDEP), every call in a forked child, against the long double oracle. Its known misses
 // (docs/peers.md: a step landing exactly on the contact) are counted and printed, not asserted; the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Core shapes: support mappings of every kind, convex hull construction, bounds, thread safety.
 kairos_gtest(test_shapes
     SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/shapes/test_shapes.cpp ${CMAKE_CURRENT_SOURCE_DIR}/shapes/test_hull.cpp

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Cast peers, each in its own executable: Bullet's double build (never linked with the float
 # build) and FCL's conservative advancement (every call in a forked child).
 find_package(PkgConfig QUIET)

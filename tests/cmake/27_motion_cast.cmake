@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Motion cast (rotation by disk bounds with bisection): random rotating pairs of every kind against
 # the conservative-advancement reference, closed forms, hard cases. MotionCastLong.* is the long
 # run (10^5 casts), disabled unless asked for.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The C boundary through the shared library: bad input for every exported function.
 kairos_gtest(test_capi SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_input.cpp LIBS kairos)
 # Flat shapes in every query against closed forms, and the contract regressions of issue 11.

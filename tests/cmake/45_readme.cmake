@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The README's C example is extracted, compiled and run against the built library.
 if(NOT CMAKE_C_FLAGS MATCHES "-fsanitize")
     add_test(NAME readme_c_example

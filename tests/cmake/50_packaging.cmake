@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Packaging and ABI: header tests, struct layout, C99 and dlopen programs, ctypes, install consumers, exports, abidiff.
 
 set(KAIROS_ABI_TESTS ${CMAKE_CURRENT_SOURCE_DIR}/abi)

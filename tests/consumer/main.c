@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Consumer test: a small C program built against an installed Kairos (CMake package or pkg-config). */
 #include <stdio.h>
 #include <string.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Consumer test: install the build tree into a scratch prefix and build outside programs against it.
 #
 # Usage: run_consumer.sh <step> <build dir> <work dir>

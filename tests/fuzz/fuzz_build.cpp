@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape construction for the fuzz targets: point sets, every constructor and combinator, each call
 // checked against the status contract and each shape against its model (see fuzz_support.hpp).
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The support-function model of the fuzz targets' shapes, and the checks of built shapes against it
 // (see fuzz_support.hpp).
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz target: pair queries (distance, intersect, ray, shape and motion casts) on two fuzz-built
 // shapes at fuzz poses, motions and settings, each result checked against the contract and
 // against the shapes' support-function models (separating planes bound every distance).

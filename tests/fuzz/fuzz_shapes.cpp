@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz target: shape construction from arbitrary bytes. Every constructor and combinator, with
 // each result checked against an independent model of its support function (fuzz_support.hpp).
 #include <cstddef>

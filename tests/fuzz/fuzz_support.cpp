@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared pieces of the Kairos fuzz targets (see fuzz_support.hpp).
 #include "fuzz_support.hpp"
 

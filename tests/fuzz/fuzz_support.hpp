@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared pieces of the Kairos fuzz targets: the byte reader, generators of numbers, poses and
 // point sets, the status contract of every call, and shape construction checked against an
 // independent support-function model (long double) of what was asked for.

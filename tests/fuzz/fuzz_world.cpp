@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz target: sequences of world operations (create with each broad phase, add, remove,
 // set_pose, move, step, contacts, overlaps, step_stats, stale and NULL arguments) decoded from
 // bytes, each checked against the contract; after every step the contacts and overlaps are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the GJK core (src/gjk/gjk.hpp): closed forms, random polytopes against the exact oracle,
 // hard cases, and the intersection test with a cached axis.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cross-check of Kairos GJK distance against Bullet's double-precision btGjkPairDetector (the
 // best distance reference among the peers). Its own executable: Bullet's float and double builds
 // export the same symbols. Disagreements are arbitrated by independent certificates.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Near contact on curved surfaces against a closed-form gap: separated pairs must never be reported
 // as intersecting, at any tolerance, and the distance must match the gap.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cross-checks of Kairos GJK against FCL (distance, GST_INDEP; every call in a forked child, since
 // the Debian build may abort) and libccd (ccdGJKIntersect, ccdMPRIntersect). Every disagreement
 // beyond tolerance is arbitrated by independent certificates of Kairos's answer (test-side

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Motion over a step and the disk bound on rotation, against closed forms and sampled paths.
 #include <gtest/gtest.h>
 

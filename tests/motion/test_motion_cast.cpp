@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the motion cast (src/motion/motion_cast.hpp) against the conservative-advancement reference of
 // tests/support/oracle/motion_reference.hpp and closed forms: random rotating pairs of every kind, spinning
 // rods through thin walls, a spinning box grazing a sphere, rotation about a point outside the hull.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Peer cross-check: Bullet's btContinuousConvexCollision (double build) under 45 degrees per step,
 // against the motion reference, beside Kairos on the same motions. Bullet's known behaviour (stops
 // short by design, misses with larger turns) is printed, not asserted; Kairos' answers are.

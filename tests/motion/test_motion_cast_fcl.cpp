@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Peer cross-check: FCL's continuousCollide with screw motion and zero translation (pure rotation,
 // the only FCL rotation mode that works; docs/peers.md), conservative advancement, GST_INDEP, every call
 // in a forked child, against the motion reference, beside Kairos on the same motions. FCL's known

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """ABI test: use libkairos from Python through ctypes (standard library only).
 
 Usage: test_ctypes.py <path to libkairos.so.0>. Declares the public structs and the functions it

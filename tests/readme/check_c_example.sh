@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Extracts the C example from README.md, builds it against the built library, runs it, and
 # checks what it prints, so the README's example stays true.
 # Usage: check_c_example.sh README.md <include dir> <generated include dir> <libkairos.so path> <C compiler>

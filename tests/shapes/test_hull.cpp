@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hull construction against brute force: kept vertices, supports, adjacency, errors.
 #include <gtest/gtest.h>
 

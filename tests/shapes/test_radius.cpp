@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Extreme radius about an axis, against its definition R = max over unit w perpendicular to the
 // axis of h(w) = w . s(w), sampled densely (a lower bound within cos(pi/N) of the truth).
 #include <gtest/gtest.h>

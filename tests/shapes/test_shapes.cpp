@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Support mappings of every shape kind checked against closed-form support functions and
 // sampled points of the shapes; bounds at random poses; sharing shapes between threads.
 #include <gtest/gtest.h>

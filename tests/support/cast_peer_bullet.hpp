@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bullet's btSubsimplexConvexCast on the cast test shapes, for the peer cross-check and the cast
 // benchmark. Compiled in the float or the double build of Bullet (btScalar), never both in one
 // program. Box, cylinder, cone and hull margins are set to 0 so the shapes are exact; spheres

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FCL's continuousCollide (translation motion, conservative advancement, GST_INDEP) on the cast
 // test shapes, every call guarded in a forked child: the Debian build can abort, and some of its
 // paths throw. For the peer cross-check and the cast benchmark.

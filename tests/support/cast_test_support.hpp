@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by the cast tests, the long run and the cast benchmark: random shapes of every kind with
 // their oracle bodies, random casts, and the comparison of a cast result with the oracle's truth.
 #pragma once

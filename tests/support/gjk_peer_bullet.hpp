@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bullet versions of the peer shape descriptions (Spec), exact shapes (zero margins except the
 // sphere's and capsule's radius), shared by the Bullet cross-check and the GJK benchmark.
 #pragma once

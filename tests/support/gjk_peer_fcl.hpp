@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FCL versions of the peer shape descriptions (Spec), shared by the FCL cross-checks and the GJK
 // benchmark: one construction, so tests and benchmark compare the same geometry.
 #pragma once

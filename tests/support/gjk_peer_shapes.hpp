@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape descriptions shared by the peer cross-checks and the GJK benchmark: one random pair
 // generator for every library, test-side support mappings and membership tests written
 // independently of the library (used to certify answers), and Kairos shapes built from them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared helpers of the GJK tests: shape ownership, random poses and polytopes, oracle bodies.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by the motion cast peer checks and the benchmark: the random rotating cases the peers can
 // take (kinds with an exact peer shape: sphere, box, capsule, cylinder, cone, hull), with the
 // reference's verdict, and the tally of a peer's answers against it.

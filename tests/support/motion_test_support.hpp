@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by the motion cast tests, the peer checks and the benchmark: random rotating pairs with
 // their reference, and the judgement of a motion cast result against it.
 #pragma once

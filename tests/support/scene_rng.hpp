@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The random source of the scene tests and benchmarks: splitmix64, a fixed, portable sequence
 // for a given seed (the same scenes on every machine and standard library).
 #pragma once

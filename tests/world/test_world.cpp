@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the world's step on the core: broad-phase pairs against brute force and against boxes
 // computed here, contacts against a cast of every pair, turning objects against sampled poses,
 // edits between steps, determinism, stale ids.

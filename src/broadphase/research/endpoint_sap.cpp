@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // EndpointSap: bulk insertion and removal, teleports by adjacent swaps, the overlap set kept by
 // the swaps, and the check of the arrays and the set against brute force.
 #include "broadphase/research/endpoint_sap.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sorted endpoint arrays per axis (EndpointSap), the base of the global and the queued space-time
 // sweeps. Internal to broadphase/ (namespace broadphase_detail).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The space-time sweep in one batch per axis (SpacetimeSapGlobal, class SpacetimeSap): each axis
 // brought from its start order to its end order by adjacent swaps, crossings tested exactly.
 #include <algorithm>

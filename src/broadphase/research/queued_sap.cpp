@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The talks' space-time sweep and prune (SpacetimeSapQueued): every adjacent swap of the endpoint
 // arrays is an event in an indexed heap, and the events are done in time order.
 #include <algorithm>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Finding: kairos_shape_bounds returns a box with min > max. A nearly flat triangle (0.0004 thick
  * in z) moved 1e15 away by kairos_shape_transformed, at a pose turned by 2e-4 rad about x: the z
  * range comes back as [999799980002000.38, 999799980002000.25]. The two ends come from two support

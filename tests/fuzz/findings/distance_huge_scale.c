@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Finding: kairos_distance on shapes near KAIROS_MAX_MAGNITUDE (a 53-point hull reaching 1e100, and
  * a unit sphere at the same pose) answers two different distances for (a, b) and (b, a), 3.2e99 and
  * 2.7e99 (terminations NO_PROGRESS), where the sphere lies at the hull's local origin. Inputs within

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Finding: for intersecting shapes kairos_distance reports point_a = point_b far outside B. A needle
  * hull (44 points, 1.9e13 long, 200 thick) grown by a unit sphere, against a unit sphere at the same
  * pose: distance 0, intersecting 1, termination FULL_SIMPLEX, and point_b = (6.9e12, 18, -102),

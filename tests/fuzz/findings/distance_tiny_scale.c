@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Finding: kairos_distance calls two separated tetrahedra touching once they are small. The same
  * pair scaled by s (gap 2.01 s) gives distance/s = 2.0124611797498106 at s = 1 .. 1e-150,
  * 2.01242 at s = 1e-160 (relative error 2e-5) and 0 with termination NEAR_CONTACT at s = 1e-200

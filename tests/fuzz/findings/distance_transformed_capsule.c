@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Finding: a capsule behind an identity kairos_shape_transformed answers differently from the bare
  * capsule, and wrongly for long ones. A unit sphere at the centre of capsule(r 26.23, half_height
  * 1e10) is inside it; the bare capsule gives distance 0, intersecting. Transformed by the identity:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Finding: kairos_distance returns closest points that do not match the distance when one shape is
  * about 1e10 times larger than the other (moderate magnitudes, well inside KAIROS_MAX_MAGNITUDE).
  * 1. A unit sphere against a large triangle grown by a unit sphere (hull of 3 points + sphere(1)):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test oracle for translational casts: the true first time of impact of two convex shapes moving by
 // constant translations, in long double, independent of the library (no GJK, no library supports).
 //

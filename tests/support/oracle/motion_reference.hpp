@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test reference for motion casts: the first contact of two shapes that translate and rotate over
 // the step, proven by conservative sampling of their exact distance, independent of the cast.
 //

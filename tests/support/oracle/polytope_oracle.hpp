@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test oracle: distance, intersection and penetration depth of two convex polytopes given by their
 // vertices, by brute force in long double. Independent of the library (no GJK, no shape supports).
 //
