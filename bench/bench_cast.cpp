@@ -11,10 +11,10 @@
 #include <memory>
 #include <vector>
 
-#include "casts/cast.hpp"
 #include "cast_bench_common.hpp"
 #include "cast_peer_bullet.hpp"
 #include "cast_peer_fcl.hpp"
+#include "casts/cast.hpp"
 
 using namespace cast_bench;
 
@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
             for (const double tol : tolerances) {
                 auto one = [&](size_t i) {
                     const Item& x = set[i];
-                    res[i] = kairos::cast_detail::shape_cast(*x.a.shape, x.c.pa, x.c.ta, *x.b.shape, x.c.pb, x.c.tb, tol, 256, policy);
+                    res[i] = kairos::cast_detail::shape_cast(*x.a.shape, x.c.pa, x.c.ta, *x.b.shape, x.c.pb, x.c.tb,
+                                                             tol, 256, policy);
                     benchmark::DoNotOptimize(res[i]);
                 };
                 const Timing ns = time_casts(one, set.size());
@@ -54,7 +55,8 @@ int main(int argc, char** argv) {
                 benchmark::DoNotOptimize(res[i]);
             };
             const Timing ns = time_casts(one, set.size());
-            csv_row(out, sc.name, "bullet64", double(MAX_CONVEX_CAST_EPSILON), ns, summarize(set, res, true, false, false));
+            csv_row(out, sc.name, "bullet64", double(MAX_CONVEX_CAST_EPSILON), ns,
+                    summarize(set, res, true, false, false));
         }
 
         // FCL conservative advancement, in forked children; time per call measured in the child.
@@ -68,7 +70,9 @@ int main(int argc, char** argv) {
             std::vector<double> per(set.size(), 1e300);
             std::vector<cast_peer::FclOut> first;
             for (int rep = 0; rep < 5; ++rep) {
-                const auto r = cast_peer::run_guarded(n, [&](int i) { return cast_peer::fcl_cast(ga[size_t(i)].get(), gb[size_t(i)].get(), set[size_t(i)].c); });
+                const auto r = cast_peer::run_guarded(n, [&](int i) {
+                    return cast_peer::fcl_cast(ga[size_t(i)].get(), gb[size_t(i)].get(), set[size_t(i)].c);
+                });
                 for (size_t i = 0; i < set.size(); ++i) per[i] = std::min(per[i], 1e9 * r[i].seconds);
                 if (rep == 0) first = r;
             }

@@ -33,12 +33,12 @@
 #include "gjk_peer_shapes.hpp"
 
 using namespace kairos;
-using peer::Kind;
-using peer::Spec;
-using peer::fcl_geometry;
-using peer::fcl_transform;
 using peer::bullet_shape;
 using peer::bullet_transform;
+using peer::fcl_geometry;
+using peer::fcl_transform;
+using peer::Kind;
+using peer::Spec;
 
 namespace {
 
@@ -101,7 +101,8 @@ std::vector<Query>& queries(Scenario sc) {
         for (;;) {
             peer::place_pair(rng, x.a, x.b);
             x.ka = peer::make_kairos(x.a), x.kb = peer::make_kairos(x.b);
-            if (sc == BoxBoxMixed || !gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256).intersecting) break;
+            if (sc == BoxBoxMixed || !gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256).intersecting)
+                break;
         }
         x.fa = std::make_shared<fcl::CollisionObjectd>(fcl_geometry(x.a), fcl_transform(x.a.pose));
         x.fb = std::make_shared<fcl::CollisionObjectd>(fcl_geometry(x.b), fcl_transform(x.b.pose));

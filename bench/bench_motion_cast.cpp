@@ -68,7 +68,7 @@ std::vector<Item> make_set(const Scenario& sc, double max_angle, int count) {
         x.m = motion_test::random_case(rng, x.a, x.b, cs);
         x.ref = motion_test::reference_pair(x.a, x.b, x.m).first_contact();
         if (!x.ref.decided) continue;
-        if (x.ref.hit && x.ref.toi == 0) continue;  // overlapping at the start says nothing about the methods
+        if (x.ref.hit && x.ref.toi == 0) continue;        // overlapping at the start says nothing about the methods
         if (!x.ref.hit && 2 * misses >= count) continue;  // at least half of the set hits
         misses += !x.ref.hit;
         out.push_back(std::move(x));
@@ -106,12 +106,11 @@ Row summarize(const std::vector<Item>& set, const std::vector<Answer>& ans, doub
 }
 
 void row(FILE* f, const char* scenario, double angle, const char* method, double tol, const Row& r) {
-    std::fprintf(f, "%s,%.6g,%s,%.3g,%.1f,%.2f,%.2f,%.2f,%.3g,%.3g,%d,%d,%d,%d,%d\n", scenario, angle * 180 / std::numbers::pi,
-                 method, tol, r.ns_median, r.iterations, r.casts, r.distances, r.err_median, r.err_max, r.misses, r.late,
-                 r.false_hits, r.hits, r.count);
+    std::fprintf(f, "%s,%.6g,%s,%.3g,%.1f,%.2f,%.2f,%.2f,%.3g,%.3g,%d,%d,%d,%d,%d\n", scenario,
+                 angle * 180 / std::numbers::pi, method, tol, r.ns_median, r.iterations, r.casts, r.distances,
+                 r.err_median, r.err_max, r.misses, r.late, r.false_hits, r.hits, r.count);
     std::fflush(f);
 }
-
 
 }  // namespace
 
@@ -119,8 +118,9 @@ int main(int argc, char** argv) {
     FILE* out = argc > 1 ? std::fopen(argv[1], "w") : stdout;
     if (!out) return 1;
     const int count = argc > 2 ? std::atoi(argv[2]) : 192;
-    std::fprintf(out, "scenario,max_angle_deg,method,tolerance,ns_median,iterations_mean,casts_mean,distances_mean,"
-                      "toi_err_median,toi_err_max,misses,late,false_hits,hits,cases\n");
+    std::fprintf(out,
+                 "scenario,max_angle_deg,method,tolerance,ns_median,iterations_mean,casts_mean,distances_mean,"
+                 "toi_err_median,toi_err_max,misses,late,false_hits,hits,cases\n");
     const double tolerances[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10};
     for (const Scenario& sc : kScenarios)
         for (const double angle : kAngles) {
@@ -136,13 +136,15 @@ int main(int argc, char** argv) {
                                     Variant{"kairos_hybrid", motion_detail::Strategy::Hybrid},
                                     Variant{"kairos_disk", motion_detail::Strategy::DiskBisection}}) {
                 for (const double tol : tolerances) {
-                    if (v.strategy != motion_detail::kDefaultStrategy && tol != 1e-3 && tol != 1e-6 && tol != 1e-10) continue;
+                    if (v.strategy != motion_detail::kDefaultStrategy && tol != 1e-3 && tol != 1e-6 && tol != 1e-10)
+                        continue;
                     double iterations = 0, casts = 0, distances = 0;
                     auto one = [&](size_t i) {
                         const Item& x = set[i];
                         MotionCastStats st;
-                        const CastResult r = motion_detail::motion_cast_with(*x.a.shape, Motion(x.m.a0, x.m.a1), *x.b.shape,
-                                                                             Motion(x.m.b0, x.m.b1), tol, 256, v.strategy, &st);
+                        const CastResult r =
+                            motion_detail::motion_cast_with(*x.a.shape, Motion(x.m.a0, x.m.a1), *x.b.shape,
+                                                            Motion(x.m.b0, x.m.b1), tol, 256, v.strategy, &st);
                         benchmark::DoNotOptimize(r);
                         ans[i] = {r.hit, r.toi};
                         return std::tuple{r.iterations, st.casts, st.distances};
@@ -177,8 +179,9 @@ int main(int argc, char** argv) {
                     btContinuousConvexCollision ccd(sa[i].get(), sb[i].get(), &simplex, &epa);
                     btConvexCast::CastResult res;
                     const Item& x = set[i];
-                    const bool hit = ccd.calcTimeOfImpact(pose(x.m.a0), pose(x.m.a1), pose(x.m.b0), pose(x.m.b1), res) &&
-                                     res.m_fraction <= btScalar(1);
+                    const bool hit =
+                        ccd.calcTimeOfImpact(pose(x.m.a0), pose(x.m.a1), pose(x.m.b0), pose(x.m.b1), res) &&
+                        res.m_fraction <= btScalar(1);
                     ans[i] = {hit, hit ? double(res.m_fraction) : 1.0};
                     benchmark::DoNotOptimize(ans[i]);
                 };
@@ -195,7 +198,9 @@ int main(int argc, char** argv) {
                     ga.push_back(cast_peer::fcl_shape(x.a.body));
                     gb.push_back(cast_peer::fcl_shape(x.b.body));
                 }
-                auto pose = [](const Pose& s) { return cast_peer::fcl_pose(make_transform(s.position, s.orientation)); };
+                auto pose = [](const Pose& s) {
+                    return cast_peer::fcl_pose(make_transform(s.position, s.orientation));
+                };
                 std::vector<double> per(set.size(), 1e300);
                 std::vector<cast_peer::FclOut> first;
                 for (int rep = 0; rep < 3; ++rep) {
@@ -222,7 +227,8 @@ int main(int argc, char** argv) {
                     for (size_t i = 0; i < set.size(); ++i) per[i] = std::min(per[i], 1e9 * res[i].seconds);
                     if (rep == 0) first = res;
                 }
-                for (size_t i = 0; i < set.size(); ++i) ans[i] = {first[i].status == 0 && first[i].hit != 0, first[i].toi};
+                for (size_t i = 0; i < set.size(); ++i)
+                    ans[i] = {first[i].status == 0 && first[i].hit != 0, first[i].toi};
                 Row r = summarize(set, ans, 1e-4);
                 r.ns_median = cast_bench::median(per);
                 row(out, sc.name, angle, "fcl_ca_screw", 1e-4, r);

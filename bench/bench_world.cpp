@@ -51,10 +51,14 @@ enum class SceneKind { Uniform5, Uniform50, Moving10, Flock };
 
 const char* scene_name(SceneKind k) {
     switch (k) {
-        case SceneKind::Uniform5: return "uniform5";
-        case SceneKind::Uniform50: return "uniform50";
-        case SceneKind::Moving10: return "moving10";
-        case SceneKind::Flock: return "flock";
+        case SceneKind::Uniform5:
+            return "uniform5";
+        case SceneKind::Uniform50:
+            return "uniform50";
+        case SceneKind::Moving10:
+            return "moving10";
+        case SceneKind::Flock:
+            return "flock";
     }
     return "?";
 }
@@ -76,10 +80,18 @@ public:
                           rng.uniform(-half_side_, half_side_)};
             const Vec3 d = rng.direction();
             switch (kind) {
-                case SceneKind::Uniform5: velocity_[i] = 0.05 * d; break;
-                case SceneKind::Uniform50: velocity_[i] = 0.5 * d; break;
-                case SceneKind::Moving10: velocity_[i] = i % 10 == 0 ? 0.05 * d : Vec3{}; break;
-                case SceneKind::Flock: velocity_[i] = common; break;
+                case SceneKind::Uniform5:
+                    velocity_[i] = 0.05 * d;
+                    break;
+                case SceneKind::Uniform50:
+                    velocity_[i] = 0.5 * d;
+                    break;
+                case SceneKind::Moving10:
+                    velocity_[i] = i % 10 == 0 ? 0.05 * d : Vec3{};
+                    break;
+                case SceneKind::Flock:
+                    velocity_[i] = common;
+                    break;
             }
             moves_[i] = velocity_[i] == Vec3{} ? 0 : 1;
         }
@@ -107,7 +119,8 @@ public:
             centre_[i] += velocity_[i];
             if (bounce_) {
                 for (int k = 0; k < 3; ++k) {
-                    if (std::fabs(centre_[i][k]) > half_side_ && centre_[i][k] * velocity_[i][k] > 0) velocity_[i][k] = -velocity_[i][k];
+                    if (std::fabs(centre_[i][k]) > half_side_ && centre_[i][k] * velocity_[i][k] > 0)
+                        velocity_[i][k] = -velocity_[i][k];
                 }
             }
             end_[i] = box_at(centre_[i]);
@@ -143,7 +156,8 @@ class KairosContender final : public Contender {
 public:
     explicit KairosContender(BroadPhaseKind kind) : bp_(BroadPhase::create(kind)) {}
     void build(const Scene& scene) override {
-        for (int i = 0; i < scene.size(); ++i) bp_->add(static_cast<uint32_t>(i), scene.start(static_cast<std::size_t>(i)), false);
+        for (int i = 0; i < scene.size(); ++i)
+            bp_->add(static_cast<uint32_t>(i), scene.start(static_cast<std::size_t>(i)), false);
         bp_->flush();
     }
     StepCounts step(const Scene& scene) override {
@@ -218,7 +232,8 @@ public:
         }
         for (int i = 0; i < scene.size(); ++i) {
             const Aabb b = scene.swept(static_cast<std::size_t>(i));
-            proxies_.push_back(bp_->createProxy(bt(b.min), bt(b.max), BOX_SHAPE_PROXYTYPE, nullptr, 1, -1, &dispatcher_));
+            proxies_.push_back(
+                bp_->createProxy(bt(b.min), bt(b.max), BOX_SHAPE_PROXYTYPE, nullptr, 1, -1, &dispatcher_));
         }
         bp_->calculateOverlappingPairs(&dispatcher_);
     }
@@ -246,26 +261,40 @@ enum class Variant { Spacetime, Global, Queued, Encapsulating, Fcl, BulletSweep,
 
 const char* variant_name(Variant v) {
     switch (v) {
-        case Variant::Spacetime: return "kairos_spacetime_sap";
-        case Variant::Global: return "kairos_spacetime_sap_global";
-        case Variant::Queued: return "kairos_spacetime_sap_queued";
-        case Variant::Encapsulating: return "kairos_encapsulating_sap";
-        case Variant::Fcl: return "fcl_dynamic_aabb_tree";
-        case Variant::BulletSweep: return "bullet_32bit_axis_sweep3";
-        case Variant::BulletDbvt: return "bullet_dbvt";
+        case Variant::Spacetime:
+            return "kairos_spacetime_sap";
+        case Variant::Global:
+            return "kairos_spacetime_sap_global";
+        case Variant::Queued:
+            return "kairos_spacetime_sap_queued";
+        case Variant::Encapsulating:
+            return "kairos_encapsulating_sap";
+        case Variant::Fcl:
+            return "fcl_dynamic_aabb_tree";
+        case Variant::BulletSweep:
+            return "bullet_32bit_axis_sweep3";
+        case Variant::BulletDbvt:
+            return "bullet_dbvt";
     }
     return "?";
 }
 
 std::unique_ptr<Contender> make(Variant v) {
     switch (v) {
-        case Variant::Spacetime: return std::make_unique<KairosContender>(BroadPhaseKind::SpacetimeSap);
-        case Variant::Global: return std::make_unique<KairosContender>(BroadPhaseKind::SpacetimeSapGlobal);
-        case Variant::Queued: return std::make_unique<KairosContender>(BroadPhaseKind::SpacetimeSapQueued);
-        case Variant::Encapsulating: return std::make_unique<KairosContender>(BroadPhaseKind::EncapsulatingSap);
-        case Variant::Fcl: return std::make_unique<FclContender>();
-        case Variant::BulletSweep: return std::make_unique<BulletContender>(false);
-        case Variant::BulletDbvt: return std::make_unique<BulletContender>(true);
+        case Variant::Spacetime:
+            return std::make_unique<KairosContender>(BroadPhaseKind::SpacetimeSap);
+        case Variant::Global:
+            return std::make_unique<KairosContender>(BroadPhaseKind::SpacetimeSapGlobal);
+        case Variant::Queued:
+            return std::make_unique<KairosContender>(BroadPhaseKind::SpacetimeSapQueued);
+        case Variant::Encapsulating:
+            return std::make_unique<KairosContender>(BroadPhaseKind::EncapsulatingSap);
+        case Variant::Fcl:
+            return std::make_unique<FclContender>();
+        case Variant::BulletSweep:
+            return std::make_unique<BulletContender>(false);
+        case Variant::BulletDbvt:
+            return std::make_unique<BulletContender>(true);
     }
     return nullptr;
 }
@@ -320,20 +349,27 @@ void run(benchmark::State& state, SceneKind kind, Variant variant) {
     state.counters["pairs"] = static_cast<double>(total.pairs) * k;
     state.counters["swaps"] = static_cast<double>(total.swaps) * k;
     state.counters["cpu_ms"] = 1e3 * cpu * k;
-    Row r{scene_name(kind), variant_name(variant), n, 1e3 * cpu * k, 1e3 * wall * k,
-          static_cast<double>(total.swaps) * k, static_cast<double>(total.pairs) * k, -1};
+    Row r{scene_name(kind),
+          variant_name(variant),
+          n,
+          1e3 * cpu * k,
+          1e3 * wall * k,
+          static_cast<double>(total.swaps) * k,
+          static_cast<double>(total.pairs) * k,
+          -1};
     if (variant == Variant::Encapsulating) {
         r.false_positives = static_cast<double>(total.false_positives) * k;
         state.counters["false_positives"] = r.false_positives;
     }
-    if (variant == Variant::Spacetime || variant == Variant::Global || variant == Variant::Queued) r.false_positives = 0;
+    if (variant == Variant::Spacetime || variant == Variant::Global || variant == Variant::Queued)
+        r.false_positives = 0;
     rows().push_back(r);
 }
 
 void register_all() {
     const SceneKind scenes[] = {SceneKind::Uniform5, SceneKind::Uniform50, SceneKind::Moving10, SceneKind::Flock};
-    const Variant variants[] = {Variant::Spacetime, Variant::Global, Variant::Queued, Variant::Encapsulating,
-                                Variant::Fcl, Variant::BulletSweep, Variant::BulletDbvt};
+    const Variant variants[] = {Variant::Spacetime, Variant::Global,      Variant::Queued,    Variant::Encapsulating,
+                                Variant::Fcl,       Variant::BulletSweep, Variant::BulletDbvt};
     for (SceneKind s : scenes) {
         for (Variant v : variants) {
             for (int n : {1000, 10000, 100000}) {
@@ -374,7 +410,8 @@ void write_csv(const char* path) {
             *it = r;
         }
     }
-    std::fprintf(f, "scene,n,variant,cpu_ms_per_step,wall_ms_per_step,swaps_per_step,pairs_per_step,false_positives_per_step\n");
+    std::fprintf(
+        f, "scene,n,variant,cpu_ms_per_step,wall_ms_per_step,swaps_per_step,pairs_per_step,false_positives_per_step\n");
     for (Row r : best) {
         if (r.false_positives < 0) {
             const auto it = exact.find({r.scene, r.n});
@@ -403,7 +440,7 @@ void run_interleaved(const char* path) {
     }
     std::fprintf(f, "scene,n,variant,cpu_ms_per_step,ratio_to_kairos_spacetime_sap\n");
     const SceneKind scenes[] = {SceneKind::Uniform5, SceneKind::Uniform50, SceneKind::Moving10, SceneKind::Flock};
-    const Variant variants[] = {Variant::Spacetime, Variant::Fcl, Variant::BulletSweep, Variant::BulletDbvt,
+    const Variant variants[] = {Variant::Spacetime,     Variant::Fcl,    Variant::BulletSweep, Variant::BulletDbvt,
                                 Variant::Encapsulating, Variant::Global, Variant::Queued};
     for (SceneKind kind : scenes) {
         for (int n : {1000, 10000, 100000}) {
@@ -411,7 +448,8 @@ void run_interleaved(const char* path) {
             std::vector<Variant> used;
             std::vector<std::unique_ptr<Contender>> cs;
             for (Variant v : variants) {
-                if (n == 100000 && (v == Variant::BulletSweep || v == Variant::Encapsulating || v == Variant::Queued)) continue;
+                if (n == 100000 && (v == Variant::BulletSweep || v == Variant::Encapsulating || v == Variant::Queued))
+                    continue;
                 used.push_back(v);
                 cs.push_back(make(v));
                 cs.back()->build(scene);
@@ -430,8 +468,8 @@ void run_interleaved(const char* path) {
                 const double ms = 1e3 * cpu[k] / (steps - 1);
                 const double ratio = cpu[k] / cpu[0];
                 std::fprintf(f, "%s,%d,%s,%.4f,%.2f\n", scene_name(kind), n, variant_name(used[k]), ms, ratio);
-                std::printf("%-10s %7d %-30s %10.3f ms/step  %6.2fx Kairos\n", scene_name(kind), n, variant_name(used[k]), ms,
-                            ratio);
+                std::printf("%-10s %7d %-30s %10.3f ms/step  %6.2fx Kairos\n", scene_name(kind), n,
+                            variant_name(used[k]), ms, ratio);
             }
             std::fflush(stdout);
         }

@@ -77,7 +77,11 @@ inline Summary summarize(const std::vector<Item>& set, const std::vector<kairos:
         if (t.hit && !r.hit && !t.grazing) ++s.misses;
         if (!t.hit && r.hit) {
             const double size = static_cast<double>(cast_oracle::size_of(x.a.body, x.b.body));
-            const double gap = has_point ? static_cast<double>(point_gap(x.a.body, x.b.body, p3(x.c.ta), p3(x.c.tb), r.toi, p3(r.point))) / size : 1;
+            const double gap =
+                has_point
+                    ? static_cast<double>(point_gap(x.a.body, x.b.body, p3(x.c.ta), p3(x.c.tb), r.toi, p3(r.point))) /
+                          size
+                    : 1;
             if (gap > std::max(1e-6, 2 * tolerance) && !t.grazing) ++s.false_hits;
         }
         if (t.hit && r.hit && !t.grazing && !t.start_overlap) {
@@ -91,7 +95,9 @@ inline Summary summarize(const std::vector<Item>& set, const std::vector<kairos:
             }
             if (has_point) {
                 const double size = static_cast<double>(cast_oracle::size_of(x.a.body, x.b.body));
-                s.point.push_back(static_cast<double>(point_gap(x.a.body, x.b.body, p3(x.c.ta), p3(x.c.tb), r.toi, p3(r.point))) / size);
+                s.point.push_back(
+                    static_cast<double>(point_gap(x.a.body, x.b.body, p3(x.c.ta), p3(x.c.tb), r.toi, p3(r.point))) /
+                    size);
             }
         }
     }
@@ -112,7 +118,8 @@ inline Timing time_casts(const std::function<void(size_t)>& one, size_t count, i
         for (size_t i = 0; i < count; ++i) {
             const auto t0 = std::chrono::steady_clock::now();
             for (int c = 0; c < calls; ++c) one(i);
-            const double ns = 1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / calls;
+            const double ns =
+                1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / calls;
             per[i] = std::min(per[i], ns);
         }
     Timing t;
@@ -136,8 +143,9 @@ inline FILE* open_output(int argc, char** argv) {
 }
 
 inline void csv_header(FILE* f) {
-    std::fprintf(f, "scenario,method,tolerance,ns_median,iterations_mean,toi_err_median,toi_err_max,normal_err_median,"
-                    "normal_err_max,point_err_median,point_err_max,misses,false_hits,hits,casts,ns_mean\n");
+    std::fprintf(f,
+                 "scenario,method,tolerance,ns_median,iterations_mean,toi_err_median,toi_err_max,normal_err_median,"
+                 "normal_err_max,point_err_median,point_err_max,misses,false_hits,hits,casts,ns_mean\n");
 }
 
 inline void csv_row(FILE* f, const char* scenario, const char* method, double tolerance, Timing ns, const Summary& s) {
@@ -149,9 +157,10 @@ inline void csv_row(FILE* f, const char* scenario, const char* method, double to
     };
     char it[32] = "";
     if (s.iterations >= 0) std::snprintf(it, sizeof it, "%.3f", s.iterations);
-    std::fprintf(f, "%s,%s,%.0e,%.1f,%s,%s,%s,%s,%s,%s,%s,%d,%d,%d,%d,%.1f\n", scenario, method, tolerance, ns.median, it,
-                 opt(s.toi_err, true).c_str(), opt(s.toi_err, false).c_str(), opt(s.angle, true).c_str(), opt(s.angle, false).c_str(),
-                 opt(s.point, true).c_str(), opt(s.point, false).c_str(), s.misses, s.false_hits, s.hits, s.casts, ns.mean);
+    std::fprintf(f, "%s,%s,%.0e,%.1f,%s,%s,%s,%s,%s,%s,%s,%d,%d,%d,%d,%.1f\n", scenario, method, tolerance, ns.median,
+                 it, opt(s.toi_err, true).c_str(), opt(s.toi_err, false).c_str(), opt(s.angle, true).c_str(),
+                 opt(s.angle, false).c_str(), opt(s.point, true).c_str(), opt(s.point, false).c_str(), s.misses,
+                 s.false_hits, s.hits, s.casts, ns.mean);
     std::fflush(f);
 }
 

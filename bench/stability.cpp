@@ -190,10 +190,10 @@ struct Truth {
 
 struct Case {
     QType type = QType::Pair;
-    Shape A, B;                  // Ray: A is the shape, B unused
-    Pose pa, pb;                 // start poses (Ray: pb.p is the origin)
-    Pose pa1, pb1;               // Motion: end poses
-    V3 ta{0, 0, 0}, tb{0, 0, 0}; // Cast: translations; Ray: tb is the ray's translation
+    Shape A, B;                   // Ray: A is the shape, B unused
+    Pose pa, pb;                  // start poses (Ray: pb.p is the origin)
+    Pose pa1, pb1;                // Motion: end poses
+    V3 ta{0, 0, 0}, tb{0, 0, 0};  // Cast: translations; Ray: tb is the ray's translation
     Truth truth;
 };
 
@@ -226,12 +226,15 @@ Core core_of(const Shape& s, const Pose& p, V3 shift) {
             c.poly.edges = {{0, 1}};
             return c;
         case Kind::Box:
-            for (int i = 0; i < 8; ++i) v.push_back(world({(i & 1 ? 1 : -1) * Real(s.a), (i & 2 ? 1 : -1) * Real(s.b), (i & 4 ? 1 : -1) * Real(s.c)}));
+            for (int i = 0; i < 8; ++i)
+                v.push_back(
+                    world({(i & 1 ? 1 : -1) * Real(s.a), (i & 2 ? 1 : -1) * Real(s.b), (i & 4 ? 1 : -1) * Real(s.c)}));
             break;
         case Kind::Hull:
             if (s.grid > 0) {  // the hull is the box exactly
                 for (int i = 0; i < 8; ++i)
-                    v.push_back(world({(i & 1 ? 1 : -1) * Real(s.a), (i & 2 ? 1 : -1) * Real(s.b), (i & 4 ? 1 : -1) * Real(s.c)}));
+                    v.push_back(world(
+                        {(i & 1 ? 1 : -1) * Real(s.a), (i & 2 ? 1 : -1) * Real(s.b), (i & 4 ? 1 : -1) * Real(s.c)}));
             } else {
                 for (const V3& q : s.pts) v.push_back(world(lp(q)));
             }
@@ -254,10 +257,14 @@ void pair_truth(Case& k) {
         const auto& va = a.poly.v;
         const auto& vb = b.poly.v;
         Real d2;
-        if (a.dim == 0 && b.dim == 0) d2 = oracle::dot(va[0] - vb[0], va[0] - vb[0]);
-        else if (a.dim == 0) d2 = oracle::point_segment_sq(va[0], vb[0], vb[1]);
-        else if (b.dim == 0) d2 = oracle::point_segment_sq(vb[0], va[0], va[1]);
-        else d2 = oracle::segment_segment_sq(va[0], va[1], vb[0], vb[1]);
+        if (a.dim == 0 && b.dim == 0)
+            d2 = oracle::dot(va[0] - vb[0], va[0] - vb[0]);
+        else if (a.dim == 0)
+            d2 = oracle::point_segment_sq(va[0], vb[0], vb[1]);
+        else if (b.dim == 0)
+            d2 = oracle::point_segment_sq(vb[0], va[0], va[1]);
+        else
+            d2 = oracle::segment_segment_sq(va[0], va[1], vb[0], vb[1]);
         core_d = std::sqrt(d2);
     }
     t.dist = inter ? -(depth + a.r + b.r) : core_d - a.r - b.r;
@@ -273,7 +280,8 @@ cast_oracle::Body body_of(const Shape& s, const Pose& p, V3 shift) {
             b.kind = Kind::Box, b.half_extents = {Real(s.a), Real(s.b), Real(s.c)};
             break;
         case ::Kind::Hull:
-            if (s.grid > 0) b.kind = Kind::Box, b.half_extents = {Real(s.a), Real(s.b), Real(s.c)};
+            if (s.grid > 0)
+                b.kind = Kind::Box, b.half_extents = {Real(s.a), Real(s.b), Real(s.c)};
             else {
                 b.kind = Kind::Hull;
                 for (const V3& q : s.pts) b.verts.push_back(lp(q));
@@ -329,8 +337,10 @@ bool refine_cast_truth(Case& k) {
     const double phi = (std::sqrt(5.0) - 1) / 2;
     for (int i = 0; i < 80; ++i) {
         const double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
-        if (distance_at(k, x1) < distance_at(k, x2)) hi = x2;
-        else lo = x1;
+        if (distance_at(k, x1) < distance_at(k, x2))
+            hi = x2;
+        else
+            lo = x1;
     }
     const double closest = std::min({distance_at(k, (lo + hi) / 2), distance_at(k, 0), distance_at(k, 1)});
     if (closest < -band) return false;
@@ -391,7 +401,8 @@ Real motion_gap(const Case& k, const MotionFrame& m, Real t) {
                                 u.z * u.x * C - u.y * s, u.z * u.y * C + u.x * s, c + u.z * u.z * C};
     std::array<Real, 9> R{};
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) R[3 * i + j] = Q[3 * i] * m.R0[j] + Q[3 * i + 1] * m.R0[3 + j] + Q[3 * i + 2] * m.R0[6 + j];
+        for (int j = 0; j < 3; ++j)
+            R[3 * i + j] = Q[3 * i] * m.R0[j] + Q[3 * i + 1] * m.R0[3 + j] + Q[3 * i + 2] * m.R0[6 + j];
     // A's origin relative to B's centre at t; B's centre in A's frame is -R^T (that).
     const P3 o = m.p0 + t * m.dp;
     const P3 x{-(R[0] * o.x + R[3] * o.y + R[6] * o.z), -(R[1] * o.x + R[4] * o.y + R[7] * o.z),
@@ -453,8 +464,10 @@ void motion_truth(Case& k) {
         const Real phi = (std::sqrt(Real(5)) - 1) / 2;
         for (int i = 0; i < 120; ++i) {
             const Real x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
-            if (motion_gap(k, m, x1) < motion_gap(k, m, x2)) hi = x2;
-            else lo = x1;
+            if (motion_gap(k, m, x1) < motion_gap(k, m, x2))
+                hi = x2;
+            else
+                lo = x1;
         }
         lowest = std::min(lowest, motion_gap(k, m, (lo + hi) / 2));
         k.truth.grazing = lowest <= band;
@@ -463,32 +476,49 @@ void motion_truth(Case& k) {
 
 void compute_truth(Case& k) {
     switch (k.type) {
-        case QType::Pair: pair_truth(k); break;
-        case QType::Cast: cast_truth(k); break;
-        case QType::Ray: ray_truth(k); break;
-        case QType::Motion: motion_truth(k); break;
+        case QType::Pair:
+            pair_truth(k);
+            break;
+        case QType::Cast:
+            cast_truth(k);
+            break;
+        case QType::Ray:
+            ray_truth(k);
+            break;
+        case QType::Motion:
+            motion_truth(k);
+            break;
     }
 }
 
 // ---- Methods -----------------------------------------------------------------------------------
 enum Method {
-    K_DIST, K_INTER, K_RAY, K_SHAPE, K_MOTION,
-    CCD_GJK, CCD_MPR, CCD_MPR_PEN,
-    FCL_DIST_CCD, FCL_DIST_INDEP, FCL_CCD,
-    BT_GJK, BT_SUBSIMPLEX, BT_CCC,
+    K_DIST,
+    K_INTER,
+    K_RAY,
+    K_SHAPE,
+    K_MOTION,
+    CCD_GJK,
+    CCD_MPR,
+    CCD_MPR_PEN,
+    FCL_DIST_CCD,
+    FCL_DIST_INDEP,
+    FCL_CCD,
+    BT_GJK,
+    BT_SUBSIMPLEX,
+    BT_CCC,
     kMethods
 };
 const char* kMethodName[kMethods] = {
-    "kairos_distance", "kairos_intersect", "kairos_ray_cast", "kairos_shape_cast", "kairos_motion_cast",
-    "ccd_gjk_intersect", "ccd_mpr_intersect", "ccd_mpr_penetration",
-    "fcl_distance_libccd", "fcl_distance_indep", "fcl_continuous",
-    "bullet_gjk_pair", "bullet_subsimplex", "bullet_continuous"};
+    "kairos_distance",   "kairos_intersect",  "kairos_ray_cast",     "kairos_shape_cast",   "kairos_motion_cast",
+    "ccd_gjk_intersect", "ccd_mpr_intersect", "ccd_mpr_penetration", "fcl_distance_libccd", "fcl_distance_indep",
+    "fcl_continuous",    "bullet_gjk_pair",   "bullet_subsimplex",   "bullet_continuous"};
 
 bool applies(Method m, QType t) {
     switch (t) {
         case QType::Pair:
-            return m == K_DIST || m == K_INTER || m == CCD_GJK || m == CCD_MPR || m == CCD_MPR_PEN || m == FCL_DIST_CCD ||
-                   m == FCL_DIST_INDEP || m == BT_GJK;
+            return m == K_DIST || m == K_INTER || m == CCD_GJK || m == CCD_MPR || m == CCD_MPR_PEN ||
+                   m == FCL_DIST_CCD || m == FCL_DIST_INDEP || m == BT_GJK;
         case QType::Cast:
             return m == K_SHAPE || m == K_MOTION || m == FCL_CCD || m == BT_SUBSIMPLEX || m == BT_CCC;
         case QType::Ray:
@@ -503,9 +533,9 @@ bool is_distance(Method m) { return m == K_DIST || m == FCL_DIST_CCD || m == FCL
 // One answer. status: 0 answered, 1 error status or exception, 2 crash, 3 hang.
 struct Answer {
     int status = 0;
-    int verdict = 0;     // intersecting / hit
-    double value = 0;    // distance, depth or toi
-    int capped = 0;      // the method's iteration cap fired
+    int verdict = 0;   // intersecting / hit
+    double value = 0;  // distance, depth or toi
+    int capped = 0;    // the method's iteration cap fired
 };
 
 // -- Kairos (C API) --
@@ -513,9 +543,15 @@ kairos_shape* kairos_make(const Shape& s) {
     kairos_shape* out = nullptr;
     int32_t st = KAIROS_ERROR_INTERNAL;
     switch (s.kind) {
-        case Kind::Box: st = kairos_shape_box({s.a, s.b, s.c}, &out); break;
-        case Kind::Sphere: st = kairos_shape_sphere(s.a, &out); break;
-        case Kind::Capsule: st = kairos_shape_capsule(s.a, s.b, &out); break;
+        case Kind::Box:
+            st = kairos_shape_box({s.a, s.b, s.c}, &out);
+            break;
+        case Kind::Sphere:
+            st = kairos_shape_sphere(s.a, &out);
+            break;
+        case Kind::Capsule:
+            st = kairos_shape_capsule(s.a, s.b, &out);
+            break;
         case Kind::Hull: {
             std::vector<kairos_vec3> v;
             for (const V3& q : s.pts) v.push_back({q[0], q[1], q[2]});
@@ -545,7 +581,8 @@ Answer run_kairos(Method m, const Case& k) {
     if (m == K_DIST) {
         kairos_distance_result r;
         st = kairos_distance(a, &pa, b, &pb, &qs, &r);
-        ans.value = r.distance, ans.verdict = r.intersecting, ans.capped = r.termination == KAIROS_TERMINATION_MAX_ITERATIONS;
+        ans.value = r.distance, ans.verdict = r.intersecting,
+        ans.capped = r.termination == KAIROS_TERMINATION_MAX_ITERATIONS;
     } else if (m == K_INTER) {
         int32_t hit = 0;
         st = kairos_intersect(a, &pa, b, &pb, nullptr, &hit);
@@ -606,12 +643,14 @@ Answer run_ccd(Method m, const Case& k) {
     CCD_INIT(&c);
     c.support1 = c.support2 = ccd_support;
     c.center1 = c.center2 = ccd_centre;
-    c.max_iterations = 1000;    // the cap (default: unbounded); running out reads as "no intersection"
-    c.mpr_tolerance = 1e-12;    // default 1e-4
+    c.max_iterations = 1000;  // the cap (default: unbounded); running out reads as "no intersection"
+    c.mpr_tolerance = 1e-12;  // default 1e-4
     c.epa_tolerance = 1e-12;
     c.dist_tolerance = 1e-12;
-    if (m == CCD_GJK) ans.verdict = ccdGJKIntersect(&a, &b, &c) != 0;
-    else if (m == CCD_MPR) ans.verdict = ccdMPRIntersect(&a, &b, &c) != 0;
+    if (m == CCD_GJK)
+        ans.verdict = ccdGJKIntersect(&a, &b, &c) != 0;
+    else if (m == CCD_MPR)
+        ans.verdict = ccdMPRIntersect(&a, &b, &c) != 0;
     else {
         ccd_real_t depth = 0;
         ccd_vec3_t dir, pos;
@@ -624,10 +663,14 @@ Answer run_ccd(Method m, const Case& k) {
 // -- FCL --
 std::shared_ptr<fcl::CollisionGeometryd> fcl_geom(const Shape& s) {
     switch (s.kind) {
-        case Kind::Box: return std::make_shared<fcl::Boxd>(2 * s.a, 2 * s.b, 2 * s.c);
-        case Kind::Sphere: return std::make_shared<fcl::Sphered>(s.a);
-        case Kind::Capsule: return std::make_shared<fcl::Capsuled>(s.a, 2 * s.b);
-        case Kind::Hull: break;
+        case Kind::Box:
+            return std::make_shared<fcl::Boxd>(2 * s.a, 2 * s.b, 2 * s.c);
+        case Kind::Sphere:
+            return std::make_shared<fcl::Sphered>(s.a);
+        case Kind::Capsule:
+            return std::make_shared<fcl::Capsuled>(s.a, 2 * s.b);
+        case Kind::Hull:
+            break;
     }
     auto verts = std::make_shared<std::vector<fcl::Vector3d>>();
     for (const V3& q : s.pts) verts->emplace_back(q[0], q[1], q[2]);
@@ -641,7 +684,8 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geom(const Shape& s) {
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < n; ++j)
                 for (int k = 0; k < n; ++k)
-                    if (i == 0 || j == 0 || k == 0 || i == n - 1 || j == n - 1 || k == n - 1) index[size_t((i * n + j) * n + k)] = next++;
+                    if (i == 0 || j == 0 || k == 0 || i == n - 1 || j == n - 1 || k == n - 1)
+                        index[size_t((i * n + j) * n + k)] = next++;
         auto id = [&](int i, int j, int k) { return index[size_t((i * n + j) * n + k)]; };
         for (int axis = 0; axis < 3; ++axis)
             for (int side : {0, n - 1})
@@ -654,9 +698,12 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geom(const Shape& s) {
                         };
                         const int q[4] = {at(u, v), at(u + 1, v), at(u + 1, v + 1), at(u, v + 1)};
                         // (axis+1, axis+2) is right-handed about +axis: keep on the + side, flip on the - side.
-                        for (const auto& t : {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
-                            if (side == n - 1) faces->insert(faces->end(), {3, t[0], t[1], t[2]});
-                            else faces->insert(faces->end(), {3, t[0], t[2], t[1]});
+                        for (const auto& t :
+                             {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
+                            if (side == n - 1)
+                                faces->insert(faces->end(), {3, t[0], t[1], t[2]});
+                            else
+                                faces->insert(faces->end(), {3, t[0], t[2], t[1]});
                             ++nf;
                         }
                     }
@@ -666,7 +713,8 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geom(const Shape& s) {
         const oracle::Polytope poly = oracle::make_polytope(v);
         for (size_t f = 0; f < poly.faces.size(); ++f) {
             auto t = poly.faces[f];
-            if (oracle::dot(oracle::cross(poly.v[t[1]] - poly.v[t[0]], poly.v[t[2]] - poly.v[t[0]]), poly.normals[f]) < 0)
+            if (oracle::dot(oracle::cross(poly.v[t[1]] - poly.v[t[0]], poly.v[t[2]] - poly.v[t[0]]), poly.normals[f]) <
+                0)
                 std::swap(t[1], t[2]);
             faces->insert(faces->end(), {3, t[0], t[1], t[2]});
             ++nf;
@@ -702,8 +750,10 @@ Answer run_fcl(Method m, const Case& k) {
     req.ccd_motion_type = k.type == QType::Motion ? fcl::CCDM_SCREW : fcl::CCDM_TRANS;
     fcl::ContinuousCollisionResultd res;
     Pose ea = k.pa, eb = k.pb;
-    if (k.type == QType::Motion) ea = k.pa1, eb = k.pb1;
-    else ea.p = add(ea.p, k.ta), eb.p = add(eb.p, k.tb);
+    if (k.type == QType::Motion)
+        ea = k.pa1, eb = k.pb1;
+    else
+        ea.p = add(ea.p, k.ta), eb.p = add(eb.p, k.tb);
     fcl::continuousCollide(ga.get(), fcl_tf(k.pa), fcl_tf(ea), gb.get(), fcl_tf(k.pb), fcl_tf(eb), req, res);
     ans.verdict = res.is_collide;
     ans.value = res.is_collide ? res.time_of_contact : 1;
@@ -714,9 +764,13 @@ Answer run_fcl(Method m, const Case& k) {
 std::unique_ptr<btConvexShape> bt_shape(const Shape& s) {
     std::unique_ptr<btConvexShape> out;
     switch (s.kind) {
-        case Kind::Box: out = std::make_unique<btBoxShape>(btVector3(s.a, s.b, s.c)); break;
-        case Kind::Sphere: return std::make_unique<btSphereShape>(s.a);
-        case Kind::Capsule: return std::make_unique<btCapsuleShapeZ>(s.a, 2 * s.b);
+        case Kind::Box:
+            out = std::make_unique<btBoxShape>(btVector3(s.a, s.b, s.c));
+            break;
+        case Kind::Sphere:
+            return std::make_unique<btSphereShape>(s.a);
+        case Kind::Capsule:
+            return std::make_unique<btCapsuleShapeZ>(s.a, 2 * s.b);
         case Kind::Hull: {
             auto h = std::make_unique<btConvexHullShape>();
             for (const V3& q : s.pts) h->addPoint(btVector3(q[0], q[1], q[2]), false);
@@ -750,8 +804,10 @@ Answer run_bullet(Method m, const Case& k) {
         return ans;
     }
     Pose ea = k.pa, eb = k.pb;
-    if (k.type == QType::Motion) ea = k.pa1, eb = k.pb1;
-    else ea.p = add(ea.p, k.ta), eb.p = add(eb.p, k.tb);
+    if (k.type == QType::Motion)
+        ea = k.pa1, eb = k.pb1;
+    else
+        ea.p = add(ea.p, k.ta), eb.p = add(eb.p, k.tb);
     btConvexCast::CastResult res;
     bool hit;
     if (m == BT_SUBSIMPLEX) {
@@ -769,10 +825,22 @@ Answer run_bullet(Method m, const Case& k) {
 Answer run_one(Method m, const Case& k) {
     try {
         switch (m) {
-            case K_DIST: case K_INTER: case K_RAY: case K_SHAPE: case K_MOTION: return run_kairos(m, k);
-            case CCD_GJK: case CCD_MPR: case CCD_MPR_PEN: return run_ccd(m, k);
-            case FCL_DIST_CCD: case FCL_DIST_INDEP: case FCL_CCD: return run_fcl(m, k);
-            default: return run_bullet(m, k);
+            case K_DIST:
+            case K_INTER:
+            case K_RAY:
+            case K_SHAPE:
+            case K_MOTION:
+                return run_kairos(m, k);
+            case CCD_GJK:
+            case CCD_MPR:
+            case CCD_MPR_PEN:
+                return run_ccd(m, k);
+            case FCL_DIST_CCD:
+            case FCL_DIST_INDEP:
+            case FCL_CCD:
+                return run_fcl(m, k);
+            default:
+                return run_bullet(m, k);
         }
     } catch (...) {
         Answer a;
@@ -792,7 +860,7 @@ Case swapped(const Case& k) {
 struct Verdict {
     bool fail = false;
     const char* why = "";
-    double err = 0;      // the judged error: |distance error| / size, |toi error|, or |gap| / size of a wrong verdict
+    double err = 0;  // the judged error: |distance error| / size, |toi error|, or |gap| / size of a wrong verdict
     bool err_valid = false;
 };
 
@@ -816,7 +884,8 @@ Verdict judge(Method m, const Case& k, const Answer& a) {
         const bool judged = std::fabs(double(t.dist)) > kBand * size;
         const bool truth_in = t.dist < 0;
         if (judged && bool(a.verdict) != truth_in) {
-            v.fail = true, v.why = truth_in ? "says separated, truth intersecting" : "says intersecting, truth separated";
+            v.fail = true,
+            v.why = truth_in ? "says separated, truth intersecting" : "says intersecting, truth separated";
             v.err = std::fabs(double(t.dist)) / size, v.err_valid = true;
             return v;
         }
@@ -854,8 +923,10 @@ Verdict judge_pair(Method m, const Case& k, const Answer& a, const Answer& b) {
         else if (!is_distance(m) && a.verdict != b.verdict && std::fabs(double(t.dist)) > kBand * t.size)
             v.fail = true, v.why = "orders disagree (verdict)";
     } else if (t.decided && !t.grazing) {
-        if (a.verdict != b.verdict) v.fail = true, v.why = "orders disagree (hit)";
-        else if (a.verdict && std::fabs(a.value - b.value) > kLateBound) v.fail = true, v.why = "orders disagree (toi)";
+        if (a.verdict != b.verdict)
+            v.fail = true, v.why = "orders disagree (hit)";
+        else if (a.verdict && std::fabs(a.value - b.value) > kLateBound)
+            v.fail = true, v.why = "orders disagree (toi)";
     }
     return v;
 }
@@ -947,8 +1018,9 @@ std::array<double, 4> axis_angle(V3 axis, double angle) {
     return {u[0] * s, u[1] * s, u[2] * s, std::cos(angle / 2)};
 }
 std::array<double, 4> qmul(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-    return {a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1], a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
-            a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3], a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
+    return {
+        a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1], a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+        a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3], a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
 }
 V3 perpendicular(Rng& r, V3 u) {
     for (;;) {
@@ -959,15 +1031,20 @@ V3 perpendicular(Rng& r, V3 u) {
 
 std::vector<V3> random_points(Rng& r, int n, V3 ext) {
     std::vector<V3> p;
-    for (int i = 0; i < n; ++i) p.push_back({uni(r, -ext[0], ext[0]), uni(r, -ext[1], ext[1]), uni(r, -ext[2], ext[2])});
+    for (int i = 0; i < n; ++i)
+        p.push_back({uni(r, -ext[0], ext[0]), uni(r, -ext[1], ext[1]), uni(r, -ext[2], ext[2])});
     return p;
 }
 Shape random_shape(Rng& r, double s) {
     switch (std::uniform_int_distribution<int>(0, 3)(r)) {
-        case 0: return box(s * uni(r, 0.3, 1.5), s * uni(r, 0.3, 1.5), s * uni(r, 0.3, 1.5));
-        case 1: return hull(random_points(r, 12, {s * uni(r, 0.4, 1.5), s * uni(r, 0.4, 1.5), s * uni(r, 0.4, 1.5)}));
-        case 2: return sphere(s * uni(r, 0.3, 1.2));
-        default: return capsule(s * uni(r, 0.2, 0.6), s * uni(r, 0.3, 1.2));
+        case 0:
+            return box(s * uni(r, 0.3, 1.5), s * uni(r, 0.3, 1.5), s * uni(r, 0.3, 1.5));
+        case 1:
+            return hull(random_points(r, 12, {s * uni(r, 0.4, 1.5), s * uni(r, 0.4, 1.5), s * uni(r, 0.4, 1.5)}));
+        case 2:
+            return sphere(s * uni(r, 0.3, 1.2));
+        default:
+            return capsule(s * uni(r, 0.2, 0.6), s * uni(r, 0.3, 1.2));
     }
 }
 
@@ -998,8 +1075,8 @@ std::vector<double> signed_gaps() {
 // A pair at relative gap g along u, and (when with_cast) a cast case whose relative motion reaches
 // that configuration at t = lambda_end (1: it stops there; 0.5: it goes on into A), with a lateral
 // slide and a random motion of A on top.
-void add_gap_cases(Family& f, Rng& r, const Shape& A, const Pose& pa, const Shape& B, const std::array<double, 4>& qb, V3 u,
-                   double g, bool with_cast, V3 offset = {0, 0, 0}) {
+void add_gap_cases(Family& f, Rng& r, const Shape& A, const Pose& pa, const Shape& B, const std::array<double, 4>& qb,
+                   V3 u, double g, bool with_cast, V3 offset = {0, 0, 0}) {
     const double size = std::max(radius(A), radius(B));
     Case k;
     k.type = QType::Pair;
@@ -1063,7 +1140,8 @@ Family exact_touching() {
             }
             confs.push_back({sphere(1), sphere(0.5), scl(1.5, axis), axis, id});
             confs.push_back({big, sphere(0.5), scl(1.5, axis), axis, id});
-            confs.push_back({big, capsule(0.5, 1), scl(1 + reach(capsule(0.5, 1), half_x, scl(-1, axis)), axis), axis, half_x});
+            confs.push_back(
+                {big, capsule(0.5, 1), scl(1 + reach(capsule(0.5, 1), half_x, scl(-1, axis)), axis), axis, half_x});
             // The box's corners as a hull (8 points), face on face with the small box.
             confs.push_back({grid_box(1, 1, 1, 2), small, scl(1 + reach(small, id, scl(-1, axis)), axis), axis, id});
         }
@@ -1156,11 +1234,14 @@ Family needles() {
     const double widths[] = {1e-2, 1e-4, 1e-6};
     auto needle = [&](Rng& r, double w) -> Shape {
         switch (std::uniform_int_distribution<int>(0, 2)(r)) {
-            case 0: return box(1, w, w);
-            case 1: return capsule(w, 1);
+            case 0:
+                return box(1, w, w);
+            case 1:
+                return capsule(w, 1);
             default: {
                 std::vector<V3> p;
-                for (int i = 0; i < 8; ++i) p.push_back({uni(r, -w, w), uni(r, -w, w), i < 2 ? (i ? 1.0 : -1.0) : uni(r, -1, 1)});
+                for (int i = 0; i < 8; ++i)
+                    p.push_back({uni(r, -w, w), uni(r, -w, w), i < 2 ? (i ? 1.0 : -1.0) : uni(r, -1, 1)});
                 return hull(p);
             }
         }
@@ -1190,7 +1271,8 @@ Family flat_thin() {
 Family large_hulls() {
     return gap_family("large_hulls", 606, 6, [&](Rng& r, int rep, int) {
         const Shape A = grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16);  // 1352 points
-        const Shape B = rep % 4 == 0 ? grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16) : random_shape(r, 1.0);
+        const Shape B =
+            rep % 4 == 0 ? grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16) : random_shape(r, 1.0);
         return std::pair<Shape, Shape>{A, B};
     });
 }
@@ -1299,15 +1381,21 @@ Family rotating(const char* name, uint64_t seed, Turn turn, bool translate) {
             const double tip = is_box ? std::sqrt(1 + 0.05 * 0.05) : 1.05;  // in-plane reach of the rod
             double dist, phi = a0 + angle * t_star;
             switch (i % 4) {
-                case 0: case 1:
+                case 0:
+                case 1:
                     dist = uni(r, 0.4, 0.8);
                     phi += sgn(angle) * std::asin((rb + 0.05) / dist);
                     break;
-                case 2: dist = tip + rb + std::pow(10.0, -uni(r, 1, 8)); break;
-                default: dist = tip + rb - std::pow(10.0, -uni(r, 1, 8)); break;
+                case 2:
+                    dist = tip + rb + std::pow(10.0, -uni(r, 1, 8));
+                    break;
+                default:
+                    dist = tip + rb - std::pow(10.0, -uni(r, 1, 8));
+                    break;
             }
             const double zoff = uni(r, -0.02, 0.02);
-            k.pb.p = add(k.pa.p, add(add(scl(dist * std::cos(phi), e1), scl(dist * std::sin(phi), e2)), scl(zoff, zaxis)));
+            k.pb.p =
+                add(k.pa.p, add(add(scl(dist * std::cos(phi), e1), scl(dist * std::sin(phi), e2)), scl(zoff, zaxis)));
         } else {
             const V3 v = scl(uni(r, 0.5, 2), zaxis);
             const V3 along = add(scl(std::cos(a0), e1), scl(std::sin(a0), e2));
@@ -1348,10 +1436,14 @@ std::string fmt(double v) {
 std::string v3s(V3 v) { return "(" + fmt(v[0]) + "," + fmt(v[1]) + "," + fmt(v[2]) + ")"; }
 std::string shape_str(const Shape& s) {
     switch (s.kind) {
-        case Kind::Box: return "box(half=" + v3s({s.a, s.b, s.c}) + ")";
-        case Kind::Sphere: return "sphere(r=" + fmt(s.a) + ")";
-        case Kind::Capsule: return "capsule(r=" + fmt(s.a) + ",half_height=" + fmt(s.b) + ")";
-        case Kind::Hull: break;
+        case Kind::Box:
+            return "box(half=" + v3s({s.a, s.b, s.c}) + ")";
+        case Kind::Sphere:
+            return "sphere(r=" + fmt(s.a) + ")";
+        case Kind::Capsule:
+            return "capsule(r=" + fmt(s.a) + ",half_height=" + fmt(s.b) + ")";
+        case Kind::Hull:
+            break;
     }
     if (s.grid > 0)
         return "hull(surface lattice " + std::to_string(s.grid) + "^3 of box half=" + v3s({s.a, s.b, s.c}) + ", " +
@@ -1368,18 +1460,20 @@ std::string case_str(const Case& k) {
     switch (k.type) {
         case QType::Pair:
             o = "pair A=" + shape_str(k.A) + " " + pose_str(k.pa) + " B=" + shape_str(k.B) + " " + pose_str(k.pb);
-            o += " | truth distance " + fmt(double(k.truth.dist)) + (k.truth.depth_known ? " depth " + fmt(double(k.truth.depth)) : "");
+            o += " | truth distance " + fmt(double(k.truth.dist)) +
+                 (k.truth.depth_known ? " depth " + fmt(double(k.truth.depth)) : "");
             break;
         case QType::Cast:
             o = "cast A=" + shape_str(k.A) + " " + pose_str(k.pa) + " ta=" + v3s(k.ta) + " B=" + shape_str(k.B) + " " +
                 pose_str(k.pb) + " tb=" + v3s(k.tb);
             break;
         case QType::Ray:
-            o = "ray S=" + shape_str(k.A) + " " + pose_str(k.pa) + " origin=" + v3s(k.pb.p) + " translation=" + v3s(k.tb);
+            o = "ray S=" + shape_str(k.A) + " " + pose_str(k.pa) + " origin=" + v3s(k.pb.p) +
+                " translation=" + v3s(k.tb);
             break;
         case QType::Motion:
-            o = "motion A=" + shape_str(k.A) + " from " + pose_str(k.pa) + " to " + pose_str(k.pa1) + " B=" + shape_str(k.B) +
-                " at " + pose_str(k.pb) + " (static)";
+            o = "motion A=" + shape_str(k.A) + " from " + pose_str(k.pa) + " to " + pose_str(k.pa1) +
+                " B=" + shape_str(k.B) + " at " + pose_str(k.pb) + " (static)";
             break;
     }
     if (k.type != QType::Pair)
@@ -1414,18 +1508,20 @@ int main(int argc, char** argv) {
     fams.push_back(large_hulls());
     fams.push_back(grazing());
     fams.push_back(casts_in_contact());
-    fams.push_back(rotating("rotation_near_pi", 121,
-                            [](int i) {
-                                const double eps = std::pow(10.0, -double(1 + (i / 4) % 9));  // 1e-1 .. 1e-9
-                                return (i / 36) % 2 ? M_PI - eps : -(M_PI - eps);
-                            },
-                            false));
-    fams.push_back(rotating("tiny_rotation", 122,
-                            [](int i) {
-                                const double a = std::pow(10.0, -double(3 + 3 * ((i / 3) % 5)));  // 1e-3 .. 1e-15
-                                return (i / 15) % 2 ? a : -a;
-                            },
-                            true));
+    fams.push_back(rotating(
+        "rotation_near_pi", 121,
+        [](int i) {
+            const double eps = std::pow(10.0, -double(1 + (i / 4) % 9));  // 1e-1 .. 1e-9
+            return (i / 36) % 2 ? M_PI - eps : -(M_PI - eps);
+        },
+        false));
+    fams.push_back(rotating(
+        "tiny_rotation", 122,
+        [](int i) {
+            const double a = std::pow(10.0, -double(3 + 3 * ((i / 3) % 5)));  // 1e-3 .. 1e-15
+            return (i / 15) % 2 ? a : -a;
+        },
+        true));
     fams.push_back(arg_swaps());
 
     // Truths, and the hit-rate bounds: every family must have judged cases of both outcomes.
@@ -1443,14 +1539,19 @@ int main(int argc, char** argv) {
                 }
             }
             compute_truth(k);
-            if ((k.type == QType::Cast || k.type == QType::Ray) && !refine_cast_truth(k)) ++disagree, k.truth.decided = false;
+            if ((k.type == QType::Cast || k.type == QType::Ray) && !refine_cast_truth(k))
+                ++disagree, k.truth.decided = false;
             const int t = int(k.type);
             ++count[t];
             if (k.type == QType::Pair) {
-                if (std::fabs(double(k.truth.dist)) <= kBand * k.truth.size) ++unjudged[t];
-                else (k.truth.dist < 0 ? pos[t] : neg[t])++;
-            } else if (!k.truth.decided || k.truth.grazing) ++unjudged[t];
-            else (k.truth.hit ? pos[t] : neg[t])++;
+                if (std::fabs(double(k.truth.dist)) <= kBand * k.truth.size)
+                    ++unjudged[t];
+                else
+                    (k.truth.dist < 0 ? pos[t] : neg[t])++;
+            } else if (!k.truth.decided || k.truth.grazing)
+                ++unjudged[t];
+            else
+                (k.truth.hit ? pos[t] : neg[t])++;
         }
         static const char* tn[] = {"pairs", "casts", "rays", "motions"};
         std::printf("family %-17s", f.name.c_str());
@@ -1475,7 +1576,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cannot write %s\n", csv.c_str());
         return 1;
     }
-    std::fprintf(out, "method,family,cases,failures,failure_rate,worst_error,crashes,hangs,caps,method_index,family_index\n");
+    std::fprintf(
+        out, "method,family,cases,failures,failure_rate,worst_error,crashes,hangs,caps,method_index,family_index\n");
     std::vector<std::vector<double>> rate(kMethods, std::vector<double>(fams.size(), -1));
     std::vector<std::string> repro;
     for (int mi = 0; mi < kMethods; ++mi) {
@@ -1491,7 +1593,8 @@ int main(int argc, char** argv) {
             double worst = 0;
             bool first = true;
             for (size_t i = 0; i < cases.size(); ++i) {
-                const Verdict v = f.swap ? judge_pair(m, cases[i], rec[i].a[0], rec[i].a[1]) : judge(m, cases[i], rec[i].a[0]);
+                const Verdict v =
+                    f.swap ? judge_pair(m, cases[i], rec[i].a[0], rec[i].a[1]) : judge(m, cases[i], rec[i].a[0]);
                 crashes += rec[i].a[0].status == 2 || (f.swap && rec[i].a[1].status == 2);
                 hangs += rec[i].a[0].status == 3 || (f.swap && rec[i].a[1].status == 3);
                 caps += rec[i].a[0].capped || (f.swap && rec[i].a[1].capped);
@@ -1500,16 +1603,17 @@ int main(int argc, char** argv) {
                 ++failures;
                 if (first) {
                     first = false;
-                    std::string line = "REPRO " + std::string(kMethodName[m]) + " " + f.name + " case " + std::to_string(i) +
-                                       ": " + v.why + " | " + case_str(cases[i]) + " | answer " + answer_str(rec[i].a[0]);
+                    std::string line = "REPRO " + std::string(kMethodName[m]) + " " + f.name + " case " +
+                                       std::to_string(i) + ": " + v.why + " | " + case_str(cases[i]) + " | answer " +
+                                       answer_str(rec[i].a[0]);
                     if (f.swap) line += " | swapped answer " + answer_str(rec[i].a[1]);
                     repro.push_back(line);
                 }
             }
             const double fr = double(failures) / double(cases.size());
             rate[size_t(mi)][fi] = fr;
-            std::fprintf(out, "%s,%s,%zu,%d,%.6f,%.3g,%d,%d,%d,%d,%zu\n", kMethodName[m], f.name.c_str(), cases.size(), failures,
-                         fr, worst, crashes, hangs, caps, mi, fi);
+            std::fprintf(out, "%s,%s,%zu,%d,%.6f,%.3g,%d,%d,%d,%d,%zu\n", kMethodName[m], f.name.c_str(), cases.size(),
+                         failures, fr, worst, crashes, hangs, caps, mi, fi);
             std::fflush(out);
         }
     }
@@ -1523,8 +1627,10 @@ int main(int argc, char** argv) {
         std::printf("%-20s", kMethodName[mi]);
         for (size_t fi = 0; fi < fams.size(); ++fi) {
             const double fr = rate[size_t(mi)][fi];
-            if (fr < 0) std::printf(" %9s", "-");
-            else std::printf(" %9.1f", 100 * fr);
+            if (fr < 0)
+                std::printf(" %9s", "-");
+            else
+                std::printf(" %9.1f", 100 * fr);
         }
         std::printf("\n");
     }

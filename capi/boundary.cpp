@@ -49,8 +49,8 @@ Vec3 read_point(const kairos_vec3& v, const char* function, const char* name) {
     static const char* const axis[3] = {"x", "y", "z"};
     for (int i = 0; i < 3; ++i)
         if (std::fabs(c[i]) > KAIROS_MAX_MAGNITUDE)
-            fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s.%s is %g, beyond KAIROS_MAX_MAGNITUDE (%g)", name, axis[i], c[i],
-                 KAIROS_MAX_MAGNITUDE);
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s.%s is %g, beyond KAIROS_MAX_MAGNITUDE (%g)", name,
+                 axis[i], c[i], KAIROS_MAX_MAGNITUDE);
     return p;
 }
 
@@ -60,8 +60,8 @@ void require_extent(const Shape* s, const char* function, const char* what) {
     const double extent = std::fmax(max_abs(lo), max_abs(hi));
     if (!(extent <= KAIROS_MAX_MAGNITUDE)) {  // negated: NaN fails too
         s->release();
-        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s reaches %g from its origin, beyond KAIROS_MAX_MAGNITUDE (%g)", what,
-             extent, KAIROS_MAX_MAGNITUDE);
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s reaches %g from its origin, beyond KAIROS_MAX_MAGNITUDE (%g)",
+             what, extent, KAIROS_MAX_MAGNITUDE);
     }
 }
 
@@ -82,13 +82,15 @@ BodyPose read_pose(const kairos_pose* pose, const char* function, const char* na
     static const char* const part[4] = {"x", "y", "z", "w"};
     for (int i = 0; i < 4; ++i)
         if (!std::isfinite(c[i]))
-            fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s.orientation.%s must be finite (got %g)", name, part[i], c[i]);
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s.orientation.%s must be finite (got %g)", name, part[i],
+                 c[i]);
     const Quat quat{q.x, q.y, q.z, q.w};
     const double n = norm(quat);
     // NaN-safe: the negated comparison also rejects a NaN length.
     if (!(std::fabs(n - 1.0) <= KAIROS_QUAT_TOLERANCE))
         fail(KAIROS_ERROR_INVALID_ARGUMENT, function,
-             "%s.orientation must be a unit quaternion within %g (its length is %.17g)", name, KAIROS_QUAT_TOLERANCE, n);
+             "%s.orientation must be a unit quaternion within %g (its length is %.17g)", name, KAIROS_QUAT_TOLERANCE,
+             n);
     return {position, normalized(quat)};
 }
 
@@ -97,19 +99,22 @@ QuerySettings read_query_settings(const kairos_query_settings* s, const char* fu
     kairos_query_settings_init(&defaults);
     if (s == nullptr) s = &defaults;
     if (s->struct_size != sizeof(kairos_query_settings))
-        fail(KAIROS_ERROR_STRUCT_SIZE, function, "%s->struct_size must be %zu (got %u); call kairos_query_settings_init",
-             name, sizeof(kairos_query_settings), s->struct_size);
+        fail(KAIROS_ERROR_STRUCT_SIZE, function,
+             "%s->struct_size must be %zu (got %u); call kairos_query_settings_init", name,
+             sizeof(kairos_query_settings), s->struct_size);
     if (!(s->tolerance > 0 && s->tolerance < 1))  // negated: NaN fails too
         fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s->tolerance must be in (0, 1) (got %g)", name, s->tolerance);
     if (s->max_iterations < 1)
-        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s->max_iterations must be >= 1 (got %u)", name, s->max_iterations);
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s->max_iterations must be >= 1 (got %u)", name,
+             s->max_iterations);
     return {s->tolerance, s->max_iterations};
 }
 
 void require_struct_size(const void* s, uint32_t struct_size, size_t known, const char* function, const char* name) {
     if (struct_size < known)
-        fail(KAIROS_ERROR_STRUCT_SIZE, function, "%s->struct_size is %u, smaller than the %zu bytes of this struct; call its _init function",
-             name, struct_size, known);
+        fail(KAIROS_ERROR_STRUCT_SIZE, function,
+             "%s->struct_size is %u, smaller than the %zu bytes of this struct; call its _init function", name,
+             struct_size, known);
     const auto* bytes = static_cast<const unsigned char*>(s);
     for (size_t i = known; i < struct_size; ++i)
         if (bytes[i] != 0)

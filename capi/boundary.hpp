@@ -64,9 +64,11 @@ inline double require_finite(double v, const char* function, const char* name) {
 inline double require_size(double v, const char* function, const char* name, bool allow_zero = false) {
     require_finite(v, function, name);
     if (allow_zero ? !(v >= 0) : !(v > 0))
-        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s must be %s (got %.17g)", name, allow_zero ? ">= 0" : "> 0", v);
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s must be %s (got %.17g)", name, allow_zero ? ">= 0" : "> 0",
+             v);
     if (v > KAIROS_MAX_MAGNITUDE)
-        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s is %g, beyond KAIROS_MAX_MAGNITUDE (%g)", name, v, KAIROS_MAX_MAGNITUDE);
+        fail(KAIROS_ERROR_INVALID_ARGUMENT, function, "%s is %g, beyond KAIROS_MAX_MAGNITUDE (%g)", name, v,
+             KAIROS_MAX_MAGNITUDE);
     return v;
 }
 

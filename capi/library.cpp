@@ -14,18 +14,30 @@ KAIROS_API const char* kairos_last_error(void) { return kairos::capi::last_error
 
 KAIROS_API const char* kairos_status_name(int32_t status) {
     switch (status) {
-        case KAIROS_OK: return "KAIROS_OK";
-        case KAIROS_ERROR_NULL_ARGUMENT: return "KAIROS_ERROR_NULL_ARGUMENT";
-        case KAIROS_ERROR_INVALID_ARGUMENT: return "KAIROS_ERROR_INVALID_ARGUMENT";
-        case KAIROS_ERROR_STRUCT_SIZE: return "KAIROS_ERROR_STRUCT_SIZE";
-        case KAIROS_ERROR_DEGENERATE: return "KAIROS_ERROR_DEGENERATE";
-        case KAIROS_ERROR_STALE_ID: return "KAIROS_ERROR_STALE_ID";
-        case KAIROS_ERROR_OUT_OF_MEMORY: return "KAIROS_ERROR_OUT_OF_MEMORY";
-        case KAIROS_ERROR_NOT_IMPLEMENTED: return "KAIROS_ERROR_NOT_IMPLEMENTED";
-        case KAIROS_ERROR_UNSUPPORTED_VERSION: return "KAIROS_ERROR_UNSUPPORTED_VERSION";
-        case KAIROS_ERROR_INTERNAL: return "KAIROS_ERROR_INTERNAL";
-        case KAIROS_ERROR_LIMIT: return "KAIROS_ERROR_LIMIT";
-        default: return "KAIROS_UNKNOWN_STATUS";
+        case KAIROS_OK:
+            return "KAIROS_OK";
+        case KAIROS_ERROR_NULL_ARGUMENT:
+            return "KAIROS_ERROR_NULL_ARGUMENT";
+        case KAIROS_ERROR_INVALID_ARGUMENT:
+            return "KAIROS_ERROR_INVALID_ARGUMENT";
+        case KAIROS_ERROR_STRUCT_SIZE:
+            return "KAIROS_ERROR_STRUCT_SIZE";
+        case KAIROS_ERROR_DEGENERATE:
+            return "KAIROS_ERROR_DEGENERATE";
+        case KAIROS_ERROR_STALE_ID:
+            return "KAIROS_ERROR_STALE_ID";
+        case KAIROS_ERROR_OUT_OF_MEMORY:
+            return "KAIROS_ERROR_OUT_OF_MEMORY";
+        case KAIROS_ERROR_NOT_IMPLEMENTED:
+            return "KAIROS_ERROR_NOT_IMPLEMENTED";
+        case KAIROS_ERROR_UNSUPPORTED_VERSION:
+            return "KAIROS_ERROR_UNSUPPORTED_VERSION";
+        case KAIROS_ERROR_INTERNAL:
+            return "KAIROS_ERROR_INTERNAL";
+        case KAIROS_ERROR_LIMIT:
+            return "KAIROS_ERROR_LIMIT";
+        default:
+            return "KAIROS_UNKNOWN_STATUS";
     }
 }
 

@@ -64,7 +64,8 @@ KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pos
         require_pointer(out, fn, "out");
         const DistanceResult r =
             gjk_distance(shape_of(a), pa.rigid(), shape_of(b), pb.rigid(), qs.tolerance, qs.max_iterations);
-        require_finite_result(std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
+        require_finite_result(
+            std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
         kairos_distance_result res;
         res.distance = r.distance;
         res.point_a = to_c(r.point_a);

@@ -54,7 +54,7 @@ KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, ka
         const QuerySettings qs = read_query_settings(&settings->query, fn, "settings->query");
         require_pointer(out, fn, "out");
         WorldSettings ws;
-        ws.broad_phase = bp == KAIROS_BROAD_PHASE_ENCAPSULATING_SAP       ? BroadPhaseKind::EncapsulatingSap
+        ws.broad_phase = bp == KAIROS_BROAD_PHASE_ENCAPSULATING_SAP      ? BroadPhaseKind::EncapsulatingSap
                          : bp == KAIROS_BROAD_PHASE_BRUTE_FORCE          ? BroadPhaseKind::BruteForce
                          : bp == KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED ? BroadPhaseKind::SpacetimeSapQueued
                                                                          : BroadPhaseKind::SpacetimeSap;

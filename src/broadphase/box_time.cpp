@@ -41,9 +41,8 @@ uint64_t ordered_key(double x) {
 // 12 bits per pass, stable; only as many passes as the largest key needs.
 void sort_pairs(std::vector<BroadPhasePair>& pairs, std::vector<BroadPhasePair>& scratch) {
     if (pairs.size() < 64) {
-        std::sort(pairs.begin(), pairs.end(), [](const BroadPhasePair& p, const BroadPhasePair& q) {
-            return p.a != q.a ? p.a < q.a : p.b < q.b;
-        });
+        std::sort(pairs.begin(), pairs.end(),
+                  [](const BroadPhasePair& p, const BroadPhasePair& q) { return p.a != q.a ? p.a < q.a : p.b < q.b; });
         return;
     }
     auto key = [](const BroadPhasePair& p) { return (uint64_t{p.a} << 30) | p.b; };

@@ -27,22 +27,32 @@ bool same_box(const Aabb& a, const Aabb& b) { return a.min == b.min && a.max == 
 
 const char* to_string(BroadPhaseKind kind) {
     switch (kind) {
-        case BroadPhaseKind::SpacetimeSap: return "spacetime_sap";
-        case BroadPhaseKind::SpacetimeSapQueued: return "spacetime_sap_queued";
-        case BroadPhaseKind::SpacetimeSapGlobal: return "spacetime_sap_global";
-        case BroadPhaseKind::EncapsulatingSap: return "encapsulating_sap";
-        case BroadPhaseKind::BruteForce: return "brute_force";
+        case BroadPhaseKind::SpacetimeSap:
+            return "spacetime_sap";
+        case BroadPhaseKind::SpacetimeSapQueued:
+            return "spacetime_sap_queued";
+        case BroadPhaseKind::SpacetimeSapGlobal:
+            return "spacetime_sap_global";
+        case BroadPhaseKind::EncapsulatingSap:
+            return "encapsulating_sap";
+        case BroadPhaseKind::BruteForce:
+            return "brute_force";
     }
     return "unknown";
 }
 
 std::unique_ptr<BroadPhase> BroadPhase::create(BroadPhaseKind kind) {
     switch (kind) {
-        case BroadPhaseKind::SpacetimeSap: return broadphase_detail::make_region_sap();
-        case BroadPhaseKind::SpacetimeSapGlobal: return broadphase_detail::make_global_sap();
-        case BroadPhaseKind::SpacetimeSapQueued: return broadphase_detail::make_queued_sap();
-        case BroadPhaseKind::EncapsulatingSap: return broadphase_detail::make_encapsulating_sap();
-        case BroadPhaseKind::BruteForce: return broadphase_detail::make_brute_force();
+        case BroadPhaseKind::SpacetimeSap:
+            return broadphase_detail::make_region_sap();
+        case BroadPhaseKind::SpacetimeSapGlobal:
+            return broadphase_detail::make_global_sap();
+        case BroadPhaseKind::SpacetimeSapQueued:
+            return broadphase_detail::make_queued_sap();
+        case BroadPhaseKind::EncapsulatingSap:
+            return broadphase_detail::make_encapsulating_sap();
+        case BroadPhaseKind::BruteForce:
+            return broadphase_detail::make_brute_force();
     }
     return nullptr;
 }
@@ -168,11 +178,13 @@ std::string BroadPhase::check_invariants() const {
         const Record& r = records_[id];
         if (r.state == State::Live || r.state == State::PendingAdd) {
             ++live;
-            if (!valid_box(r.box) || !valid_box(r.box_end)) return "object " + std::to_string(id) + " has an invalid box";
+            if (!valid_box(r.box) || !valid_box(r.box_end))
+                return "object " + std::to_string(id) + " has an invalid box";
             if (r.is_static && !same_box(r.box, r.box_end)) return "static object " + std::to_string(id) + " moves";
         }
     }
-    if (live != live_count_) return "live count " + std::to_string(live_count_) + ", records say " + std::to_string(live);
+    if (live != live_count_)
+        return "live count " + std::to_string(live_count_) + ", records say " + std::to_string(live);
     return {};
 }
 

@@ -65,12 +65,12 @@ struct BroadPhaseCounters {
                                    // queued sweeps), of swept intervals within a column (regions)
     uint64_t teleport_swaps = 0;   // swaps done by teleports since the previous step
     uint64_t heap_pushes = 0;
-    uint64_t heap_pops = 0;        // events taken from the top of the heap
-    uint64_t heap_updates = 0;     // key changes of a queued event (decrease or increase)
-    uint64_t heap_removes = 0;     // queued events cancelled before their time
-    uint64_t moving_objects = 0;   // objects given an end box different from their start box
-    uint64_t crossing_tests = 0;   // exact space-time tests of candidates (global: pairs whose
-                                   // endpoints crossed; regions: candidates with a moving object)
+    uint64_t heap_pops = 0;       // events taken from the top of the heap
+    uint64_t heap_updates = 0;    // key changes of a queued event (decrease or increase)
+    uint64_t heap_removes = 0;    // queued events cancelled before their time
+    uint64_t moving_objects = 0;  // objects given an end box different from their start box
+    uint64_t crossing_tests = 0;  // exact space-time tests of candidates (global: pairs whose
+                                  // endpoints crossed; regions: candidates with a moving object)
 };
 
 // The first moment in [0, 1] at which two swept boxes overlap on all three axes; false if they

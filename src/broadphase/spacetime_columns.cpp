@@ -67,7 +67,8 @@ const RegionSap::Column* RegionSap::find_column(int32_t cy, int32_t cz) const {
 }
 
 RegionSap::Entry RegionSap::make_entry(uint32_t id, const Aabb& k) {
-    return {k.min.x, k.max.x, {float_below(k.min.y), float_above(k.max.y), float_below(k.min.z), float_above(k.max.z)}, id};
+    return {
+        k.min.x, k.max.x, {float_below(k.min.y), float_above(k.max.y), float_below(k.min.z), float_above(k.max.z)}, id};
 }
 
 void RegionSap::queue(uint32_t column) {
@@ -88,9 +89,10 @@ void RegionSap::unlist(uint32_t id) {
     for_columns(id, [&](uint32_t c) {
         auto& v = columns_[c].entries;
         // Sorted by (lo, id): the entry is found by binary search on its key.
-        auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(lo, id), [](const Entry& e, const std::pair<double, uint32_t>& k) {
-            return e.lo < k.first || (e.lo == k.first && e.id < k.second);
-        });
+        auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(lo, id),
+                                   [](const Entry& e, const std::pair<double, uint32_t>& k) {
+                                       return e.lo < k.first || (e.lo == k.first && e.id < k.second);
+                                   });
         v.erase(it);
     });
 }
@@ -127,13 +129,12 @@ void RegionSap::list(uint32_t id, const Aabb& k) {
     for_columns(id, [&](uint32_t c) {
         auto& v = columns_[c].entries;
         columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
-        v.insert(std::lower_bound(v.begin(), v.end(), e, [](const Entry& x, const Entry& y) {
-                     return x.lo < y.lo || (x.lo == y.lo && x.id < y.id);
-                 }),
+        v.insert(std::lower_bound(
+                     v.begin(), v.end(), e,
+                     [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); }),
                  e);
     });
 }
-
 
 // Re-keys objects by new boxes, column by column rather than object by object:
 // 1. each object's columns are compared with the new range: it leaves some, stays in some, and
@@ -214,9 +215,10 @@ void RegionSap::rekey_all() {
     for (uint32_t id : rekeys_) pending_[id] = 0;
     // 4. Entering: merged in order.
     auto entry_less = [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); };
-    std::sort(enter_.begin(), enter_.end(), [&](const std::pair<uint32_t, Entry>& x, const std::pair<uint32_t, Entry>& y) {
-        return x.first != y.first ? x.first < y.first : entry_less(x.second, y.second);
-    });
+    std::sort(enter_.begin(), enter_.end(),
+              [&](const std::pair<uint32_t, Entry>& x, const std::pair<uint32_t, Entry>& y) {
+                  return x.first != y.first ? x.first < y.first : entry_less(x.second, y.second);
+              });
     for (std::size_t i = 0; i < enter_.size();) {
         const uint32_t c = enter_[i].first;
         std::size_t j = i;
@@ -268,7 +270,8 @@ void RegionSap::query_column(const Column& c, uint32_t id) {
     // A few ulps lower, for the rounding of hi - lo and of the subtraction.
     double from = m.lo - c.max_len;
     from -= (std::fabs(from) + c.max_len) * 0x1p-50;
-    auto it = std::lower_bound(c.entries.begin(), c.entries.end(), from, [](const Entry& e, double x) { return e.lo < x; });
+    auto it =
+        std::lower_bound(c.entries.begin(), c.entries.end(), from, [](const Entry& e, double x) { return e.lo < x; });
     for (; it != c.entries.end() && !(it->lo > m.hi); ++it) {
         const Entry& e = *it;
         if (e.id == id || e.hi < m.lo) continue;

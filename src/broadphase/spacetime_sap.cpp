@@ -71,7 +71,8 @@ void RegionSap::on_flush() {
             const Aabb& b = records_[id].box;
             extents_.push_back(std::max(b.max.y - b.min.y, b.max.z - b.min.z));
         }
-        std::nth_element(extents_.begin(), extents_.begin() + static_cast<std::ptrdiff_t>(extents_.size() / 2), extents_.end());
+        std::nth_element(extents_.begin(), extents_.begin() + static_cast<std::ptrdiff_t>(extents_.size() / 2),
+                         extents_.end());
         const double median = extents_[extents_.size() / 2];
         cell_size_ = std::isfinite(median) && median > 0 ? 4 * median : 1.0;
         inverse_cell_ = 1 / cell_size_;
@@ -101,8 +102,10 @@ void RegionSap::on_flush() {
     };
     for (uint32_t c : queued_) {
         auto& v = columns_[c].entries;
-        std::sort(v.begin(), v.end(), [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
-        sweep_column(columns_[c], [&](uint32_t a, uint32_t b) { return (is_new(a) || is_new(b)) && !both_static(a, b); }, found);
+        std::sort(v.begin(), v.end(),
+                  [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
+        sweep_column(
+            columns_[c], [&](uint32_t a, uint32_t b) { return (is_new(a) || is_new(b)) && !both_static(a, b); }, found);
     }
     queued_.clear();
     // Large new objects against everything present; large old ones against the new.
@@ -272,7 +275,8 @@ std::string RegionSap::check_invariants() const {
             if (!std::binary_search(large_.begin(), large_.end(), id)) return "large object missing from the list";
             continue;
         }
-        if (m.y0 != cell(m.keyed.min.y) || m.y1 != cell(m.keyed.max.y) || m.z0 != cell(m.keyed.min.z) || m.z1 != cell(m.keyed.max.z)) {
+        if (m.y0 != cell(m.keyed.min.y) || m.y1 != cell(m.keyed.max.y) || m.z0 != cell(m.keyed.min.z) ||
+            m.z1 != cell(m.keyed.max.z)) {
             why << "object " << id << " has a stale column range";
             return why.str();
         }

@@ -49,7 +49,7 @@ private:
         std::vector<Entry> entries;
         uint32_t visited = 0;  // the pass that last queued it for a sweep
         double max_len = 0;    // at least the longest entry's hi - lo (local queries start there)
-        uint32_t movers = 0;       // this step: its moving entries, at column_movers_[first_mover...]
+        uint32_t movers = 0;   // this step: its moving entries, at column_movers_[first_mover...]
         uint32_t first_mover = 0;
     };
     // Per object: the box its entries were made from (its box, or the box swept over the last
@@ -97,10 +97,10 @@ private:
     void rekey_all();
     std::vector<uint32_t> rekeys_;  // objects to re-key: by their swept box if moving, else by their box
     std::vector<std::pair<uint32_t, Aabb>> movers_between_;
-    std::vector<Entry> entry_;      // by id: its entry in each of its columns (dense: the
-                                    // rewrite pass reads it for every moving entry)
-    std::vector<uint8_t> pending_;  // by id: re-keyed, entries to rewrite
-    std::vector<uint8_t> leaving_;  // by id: scratch of a column's compaction
+    std::vector<Entry> entry_;                          // by id: its entry in each of its columns (dense: the
+                                                        // rewrite pass reads it for every moving entry)
+    std::vector<uint8_t> pending_;                      // by id: re-keyed, entries to rewrite
+    std::vector<uint8_t> leaving_;                      // by id: scratch of a column's compaction
     std::vector<std::pair<uint32_t, uint32_t>> leave_;  // (column, id)
     std::vector<std::pair<uint32_t, Entry>> enter_;     // (column, entry)
     std::vector<Entry> merged_;
@@ -121,9 +121,9 @@ private:
     std::vector<std::pair<uint64_t, uint32_t>> column_index_;  // open addressing: key -> column
     std::size_t column_count_ = 0;
     std::vector<uint32_t> large_;
-    PairSet overlaps_;     // pairs whose boxes overlap now, not both static
+    PairSet overlaps_;  // pairs whose boxes overlap now, not both static
     std::vector<uint8_t> moving_flag_;
-    std::vector<uint32_t> stale_;  // objects keyed by their last swept box
+    std::vector<uint32_t> stale_;   // objects keyed by their last swept box
     std::vector<uint32_t> queued_;  // columns to sort and sweep
     uint32_t pass_ = 0;
     struct Active {
@@ -133,7 +133,7 @@ private:
     };
     std::vector<Active> active_;
     std::vector<uint64_t> doomed_, entered_, kept_;
-    std::vector<uint32_t> column_movers_;  // moving ids grouped by column (see first_mover)
+    std::vector<uint32_t> column_movers_;                    // moving ids grouped by column (see first_mover)
     std::vector<std::pair<uint32_t, uint32_t>> candidates_;  // pairs for the exact test
     std::vector<double> extents_;
 };

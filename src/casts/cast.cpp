@@ -113,7 +113,8 @@ struct SingleSupport {
     double scale = 1;
     [[gnu::always_inline]] Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
         out_a = s(d);
-        if (scale != 1) [[unlikely]] out_a = scale * out_a;
+        if (scale != 1) [[unlikely]]
+            out_a = scale * out_a;
         out_b = Vec3{};
         return out_a;
     }
@@ -175,12 +176,12 @@ bool coordinates_sane(const Simplex& sx) {
 
 struct LocalCast {
     bool hit;
-    bool clipped;   // at least one clip happened: `normal` holds its plane's normal
+    bool clipped;  // at least one clip happened: `normal` holds its plane's normal
     double lambda;
-    Vec3 normal;    // v of the latest clip (not unit)
-    Vec3 v;         // final x - c
+    Vec3 normal;            // v of the latest clip (not unit)
+    Vec3 v;                 // final x - c
     Vec3 point_a, point_b;  // barycentric points of the final simplex (cores)
-    double size;    // largest distance from x to a point of the final simplex (0 when empty)
+    double size;            // largest distance from x to a point of the final simplex (0 when empty)
     uint32_t iterations;
     Termination termination;
 };
@@ -190,8 +191,8 @@ struct LocalCast {
 // The loop runs at the scale cast_scale picks after the first support (sup by value: its scale is
 // set then); lambda does not depend on it, and the result's v and points are at the caller's.
 template <class Support>
-LocalCast cast_loop(Support sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double tolerance,
-                    uint32_t max_iterations, ClipPolicy policy) {
+LocalCast cast_loop(Support sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double tolerance, uint32_t max_iterations,
+                    ClipPolicy policy) {
     // Only v0's direction matters: brought to about unit length (exact) so its products neither
     // underflow nor overflow.
     v0 = pair_scale(v0, Vec3{}) * v0;
@@ -201,12 +202,12 @@ LocalCast cast_loop(Support sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double 
     Vec3 v = v0;
     Vec3 normal{};
     bool clipped = false;
-    bool moved = true;       // x moved since the last add (nothing added yet counts as moved)
-    int restarts_left = 2;   // restarts of the simplex by the guards (Johnson failure, stalls)
+    bool moved = true;      // x moved since the last add (nothing added yet counts as moved)
+    int restarts_left = 2;  // restarts of the simplex by the guards (Johnson failure, stalls)
     // Below this ||v|| relative to the simplex's size a stall is convergence (curved surfaces stall
     // near 1e-7 in double precision); above it the simplex is restarted.
     constexpr double kLoose = 1e-6;
-    double vv = INFINITY;    // ||v||^2 of the current simplex estimate
+    double vv = INFINITY;       // ||v||^2 of the current simplex estimate
     double best_vv = INFINITY;  // smallest ||v||^2 since the last clip
     int stalled = 0;            // estimates in a row, since then, that did not improve on it
     constexpr int kStall = 4;
@@ -314,7 +315,8 @@ LocalCast cast_loop(Support sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double 
         // Near-duplicate support points (a rim point found again from a direction one ulp away)
         // make the simplex degenerate: its barycentric coordinates blow up (+-1e14 seen) and v is
         // then a point off the simplex, short enough to fake a hit. Treated as a Johnson failure.
-        if ((o == Simplex::Outcome::Reduced || o == Simplex::Outcome::Backup) && !coordinates_sane(sx)) o = Simplex::Outcome::Failed;
+        if ((o == Simplex::Outcome::Reduced || o == Simplex::Outcome::Backup) && !coordinates_sane(sx))
+            o = Simplex::Outcome::Failed;
         if (o == Simplex::Outcome::Failed) {
             // No valid sub-simplex even after the backup pass: restart from the newest point.
             if (restarts_left == 0) {
@@ -450,8 +452,9 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
     return out;
 }
 
-CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
-                      Vec3 translation_b, double tolerance, uint32_t max_iterations, ClipPolicy policy) {
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
+                      ClipPolicy policy) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const RelativeFrame frame = relative_frame(pose_a, pose_b);
@@ -489,8 +492,8 @@ CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 tra
     return cast_detail::ray_cast(s, pose, origin, translation, tolerance, max_iterations, cast_detail::kDefaultPolicy);
 }
 
-CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
-                      Vec3 translation_b, double tolerance, uint32_t max_iterations) {
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations) {
     return cast_detail::shape_cast(a, pose_a, translation_a, b, pose_b, translation_b, tolerance, max_iterations,
                                    cast_detail::kDefaultPolicy);
 }

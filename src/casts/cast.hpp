@@ -43,8 +43,8 @@ CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 tra
 // -r (unit): the contact opposes the relative motion, as it does for every later hit (normal . r < 0),
 // so a solver that removes the approach velocity along the normal stops the motion into the overlap.
 // With r = 0 it is the direction from A's local origin toward B's, or world +z when they coincide.
-CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
-                      Vec3 translation_b, double tolerance, uint32_t max_iterations);
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations);
 
 namespace cast_detail {
 
@@ -56,8 +56,9 @@ inline constexpr ClipPolicy kDefaultPolicy = ClipPolicy::Keep;
 
 CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations, ClipPolicy policy);
-CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b, const Transform& pose_b,
-                      Vec3 translation_b, double tolerance, uint32_t max_iterations, ClipPolicy policy);
+CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
+                      ClipPolicy policy);
 
 // Re-expresses the simplex about the ray point x: y_i = x - (pa_i - pb_i) for its points, plus the
 // point (a, b) when `add` is set; recomputes every dot product and determinant, and runs Johnson's

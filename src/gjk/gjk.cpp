@@ -19,7 +19,7 @@ using namespace kernels;
 struct LocalDistance {
     double core;  // ||v|| of the final estimate (cores)
     Vec3 v, point_a, point_b;
-    Vec3 unit;    // -v / ||v||, or zero when v is zero
+    Vec3 unit;  // -v / ||v||, or zero when v is zero
     bool intersecting;
     uint32_t iterations;
     Termination termination;
@@ -56,7 +56,8 @@ inline bool settled(double vv, double lower_sq, double size_sq, double margin, d
 template <class S>
 constexpr bool exact_support = !std::is_same_v<S, GenericSupport>;
 template <class Pair>
-constexpr double settle_floor = exact_support<decltype(Pair::sa)> && exact_support<decltype(Pair::sb)> ? 0x1p-46 : 0x1p-40;
+constexpr double settle_floor =
+    exact_support<decltype(Pair::sa)>&& exact_support<decltype(Pair::sb)> ? 0x1p-46 : 0x1p-40;
 
 // After the first support call (unscaled): the pair's scale from its support points, and those
 // points, w and the margin brought to it (exact: a power of two). The search direction needs no
@@ -183,7 +184,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             }
         }
         // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv.
-        if (recoveries_left == 0 || settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>)) {
+        if (recoveries_left == 0 ||
+            settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>)) {
             out.termination = stop;
             break;
         }
@@ -326,8 +328,8 @@ inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
 
 }  // namespace
 
-DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, double tolerance,
-                            uint32_t max_iterations) {
+DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
+                            double tolerance, uint32_t max_iterations) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const double radius_a = ca.radius, radius_b = cb.radius;

@@ -37,9 +37,9 @@ enum class Termination : int32_t {
 
 // Result of gjk_distance. Points and axis are in the world frame.
 struct DistanceResult {
-    double distance = 0;      // >= 0; 0 when intersecting (or touching within rounding)
-    Vec3 point_a, point_b;    // closest points on A and on B (equal when intersecting)
-    Vec3 axis;                // unit, from A toward B; a separating axis when apart
+    double distance = 0;    // >= 0; 0 when intersecting (or touching within rounding)
+    Vec3 point_a, point_b;  // closest points on A and on B (equal when intersecting)
+    Vec3 axis;              // unit, from A toward B; a separating axis when apart
     bool intersecting = false;
     uint32_t iterations = 0;  // support evaluations of A - B
     Termination termination = Termination::None;
@@ -52,8 +52,8 @@ struct DistanceResult {
 // stayed below 4e-9 in the peer tests, where 6 of 1800 random pairs ended on such a rule, and a
 // cylinder or cone rim 1e-8 of the size from another shape came out up to 1e-11 of the size too
 // far (test_gjk_curved). The distance is then too large, never too small beyond rounding.
-DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, double tolerance,
-                            uint32_t max_iterations);
+DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
+                            double tolerance, uint32_t max_iterations);
 
 // True when a at pose_a and b at pose_b overlap or touch (within rounding). io_axis (world frame,
 // from A toward B, any length) seeds the search; a zero or non-finite axis means a fresh start.
@@ -111,13 +111,13 @@ struct RawVec3s {
 
 struct Simplex {
     RawVec3s<4> y, pa, pb;
-    double norm_sq[4];      // ||y_i||^2
-    double det[16][4];      // Delta_i(X) for X a subset (bit mask) of the points present
-    RawVec3s<16> u;         // u_X = sum_{i in X} Delta_i(X) y_i, per subset X (see compute_subset)
-    double lambda[4];       // barycentric coordinates of v over `bits`
-    unsigned bits = 0;      // current simplex
-    unsigned last_all = 0;  // the points of the last add (current simplex and the ones it dropped)
-    Vec3 v;                 // closest point of the current simplex to the origin
+    double norm_sq[4];        // ||y_i||^2
+    double det[16][4];        // Delta_i(X) for X a subset (bit mask) of the points present
+    RawVec3s<16> u;           // u_X = sum_{i in X} Delta_i(X) y_i, per subset X (see compute_subset)
+    double lambda[4];         // barycentric coordinates of v over `bits`
+    unsigned bits = 0;        // current simplex
+    unsigned last_all = 0;    // the points of the last add (current simplex and the ones it dropped)
+    Vec3 v;                   // closest point of the current simplex to the origin
     bool want_lambda = true;  // false: triangles skip their barycentric coordinates until
                               // update_lambda() (the distance loop needs them only at the end)
 
@@ -285,10 +285,13 @@ struct Simplex {
                 // v's direction to a few eps when ||v|| << ||y|| (nearly touching parallel faces),
                 // so v.w keeps its sign in the separation test. The base is rotated cyclically,
                 // which keeps the orientation of n and so the signs of the coordinates.
-                constexpr int i0 = std::countr_zero(S), j0 = std::countr_zero(S & (S - 1)), k0 = 31 - std::countl_zero(S);
+                constexpr int i0 = std::countr_zero(S), j0 = std::countr_zero(S & (S - 1)),
+                              k0 = 31 - std::countl_zero(S);
                 int i = i0, j = j0, k = k0;
-                if (norm_sq[j0] < norm_sq[i0] && norm_sq[j0] <= norm_sq[k0]) i = j0, j = k0, k = i0;
-                else if (norm_sq[k0] < norm_sq[i0] && norm_sq[k0] < norm_sq[j0]) i = k0, j = i0, k = j0;
+                if (norm_sq[j0] < norm_sq[i0] && norm_sq[j0] <= norm_sq[k0])
+                    i = j0, j = k0, k = i0;
+                else if (norm_sq[k0] < norm_sq[i0] && norm_sq[k0] < norm_sq[j0])
+                    i = k0, j = i0, k = j0;
                 const Vec3 n = cross(y[j] - y[i], y[k] - y[i]);
                 const double nn = dot(n, n);
                 if (nn > 0 && std::isfinite(nn)) [[likely]] {
@@ -325,7 +328,8 @@ struct Simplex {
         using Fn = void (Simplex::*)();
         static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
             return std::array<Fn, 16>{&Simplex::set_from_subset_t<M>...};
-        }(std::make_integer_sequence<unsigned, 16>{});
+        }
+        (std::make_integer_sequence<unsigned, 16>{});
         (this->*table[s & 15u])();
     }
 
@@ -390,7 +394,8 @@ struct Simplex {
         using Fn = Outcome (Simplex::*)(double);
         static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
             return std::array<Fn, 15>{&Simplex::add_from<M>...};
-        }(std::make_integer_sequence<unsigned, 15>{});
+        }
+        (std::make_integer_sequence<unsigned, 15>{});
         return (this->*table[bits & 15u])(prev_norm_sq);
     }
 
@@ -399,7 +404,8 @@ struct Simplex {
     static void for_bits(F&& f) {
         [&]<int... I>(std::integer_sequence<int, I...>) {
             ((((S >> I) & 1u) ? f(std::integral_constant<int, I>{}) : void()), ...);
-        }(std::make_integer_sequence<int, 4>{});
+        }
+        (std::make_integer_sequence<int, 4>{});
     }
 
     template <unsigned S>
@@ -443,7 +449,8 @@ struct Simplex {
         // Determinants of every subset holding the new point, smaller subsets first.
         [&]<size_t... T>(std::index_sequence<T...>) {
             (compute_subset_t<kSubsets.subsets[Old][T + 1] | last_bit>(), ...);
-        }(std::make_index_sequence<n_sub - 1>{});
+        }
+        (std::make_index_sequence<n_sub - 1>{});
 
         // A full tetrahedron: decide by signed volumes (triple products of edge vectors) rather than
         // by the determinants, which lose every digit on flat tetrahedra and would report an
@@ -460,7 +467,8 @@ struct Simplex {
         // and every point left out has a non-positive determinant in the subset grown by it.
         const bool found = [&]<size_t... T>(std::index_sequence<T...>) {
             return (try_subset<kSubsets.subsets[Old][T] | last_bit, all>() || ...);
-        }(std::make_index_sequence<n_sub>{});
+        }
+        (std::make_index_sequence<n_sub>{});
         if (found) return Outcome::Reduced;
         return backup(all, prev_norm_sq);
     }
@@ -570,7 +578,8 @@ struct Simplex {
         const double v3 = -dot(e1, cross(e2, y[0]));
         const double v0 = dot(y[1], cross(y[2], y[3]));
         // Signs first (no division on the common outside case); NaN fails the comparisons.
-        if (!(vol > 0 ? (v0 >= 0 && v1 >= 0 && v2 >= 0 && v3 >= 0) : vol < 0 && (v0 <= 0 && v1 <= 0 && v2 <= 0 && v3 <= 0)))
+        if (!(vol > 0 ? (v0 >= 0 && v1 >= 0 && v2 >= 0 && v3 >= 0)
+                      : vol < 0 && (v0 <= 0 && v1 <= 0 && v2 <= 0 && v3 <= 0)))
             return false;
         const double sum = v0 + v1 + v2 + v3;
         const double inv = sum != 0 ? 1 / sum : 0;

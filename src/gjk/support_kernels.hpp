@@ -23,7 +23,9 @@ struct SegmentSupport {
 };
 struct BoxSupport {
     Vec3 h;
-    Vec3 operator()(Vec3 d) const { return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z}; }
+    Vec3 operator()(Vec3 d) const {
+        return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z};
+    }
 };
 // Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
 // branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
@@ -55,7 +57,6 @@ struct GenericSupport {
     Vec3 operator()(Vec3 d) const { return support(*s, d); }
 };
 
-
 // B's local frame in A's: x -> r x + t, with r = Ra^T Rb and t = Ra^T (tb - ta). The translation
 // difference is taken before rotating, so shapes far from the world origin keep their relative
 // precision. (GJK and the shape cast both start here.)
@@ -64,7 +65,8 @@ struct RelativeFrame {
     Vec3 t;
 };
 inline RelativeFrame relative_frame(const Transform& pose_a, const Transform& pose_b) {
-    return {transpose_mul(pose_a.rotation, pose_b.rotation), pose_a.to_local_direction(pose_b.translation - pose_a.translation)};
+    return {transpose_mul(pose_a.rotation, pose_b.rotation),
+            pose_a.to_local_direction(pose_b.translation - pose_a.translation)};
 }
 
 // Support of A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
@@ -96,13 +98,13 @@ struct PairSupport {
 inline double pair_scale(Vec3 a, Vec3 b) {
     // Plain comparisons (maxsd), not std::fmax (a library call here); a NaN coordinate is ignored.
     auto mx = [](double x, double y) { return y > x ? y : x; };
-    const double m = mx(mx(mx(std::fabs(a.x), std::fabs(a.y)), mx(std::fabs(a.z), std::fabs(b.x))), mx(std::fabs(b.y), std::fabs(b.z)));
+    const double m = mx(mx(mx(std::fabs(a.x), std::fabs(a.y)), mx(std::fabs(a.z), std::fabs(b.x))),
+                        mx(std::fabs(b.y), std::fabs(b.z)));
     if (!(m > 0) || !std::isfinite(m) || (m >= 0x1p-100 && m <= 0x1p100)) return 1;
     int e = -std::ilogb(m);
     e = e > 1000 ? 1000 : (e < -1000 ? -1000 : e);
     return std::ldexp(1.0, e);
 }
-
 
 enum class Core { Point, Segment, Box, SmallHull, Generic };
 
@@ -149,7 +151,8 @@ inline CoreOf classify(const Shape& s) {
             return {Core::Box, 0, &s};
         case ShapeKind::ConvexHull: {
             const auto& h = static_cast<const ConvexHullShape&>(s);
-            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold) return {Core::SmallHull, 0, &s};
+            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold)
+                return {Core::SmallHull, 0, &s};
             return {Core::Generic, 0, &s};
         }
         case ShapeKind::MinkowskiSum:

@@ -125,8 +125,8 @@ struct Body {
 };
 
 // Casts body x (at pose px, fattened by a disk of radius rx) against body y likewise.
-CastResult fattened_cast(const Body& x, const Transform& px, double rx, Vec3 tx, const Body& y, const Transform& py, double ry,
-                         Vec3 ty, double tolerance, uint32_t max_iterations) {
+CastResult fattened_cast(const Body& x, const Transform& px, double rx, Vec3 tx, const Body& y, const Transform& py,
+                         double ry, Vec3 ty, double tolerance, uint32_t max_iterations) {
     // The disks and sums are stack objects: their reference counts go up and down but never
     // reach zero, so nothing is deleted; the caller's shapes keep their own references.
     const DiskShape disk_x(x.local_axis, rx), disk_y(y.local_axis, ry);
@@ -162,9 +162,11 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
         stats.steps = 1;
         if (out_stats) *out_stats = stats;
         const double reach = 2 * (radius_a + radius_b);
-        const double cast_tolerance = reach > 0 && delta > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
+        const double cast_tolerance =
+            reach > 0 && delta > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
         return shape_cast(a, make_transform(ma.start().position, ma.start().orientation), ma.linear(), b,
-                          make_transform(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance, max_iterations);
+                          make_transform(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance,
+                          max_iterations);
     }
 
     const Body body_a(a, ma), body_b(b, mb);
@@ -224,7 +226,8 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
     };
     // A hit at t0 from the distance query there.
     auto report = [&](Termination termination) {
-        if (loop_tolerance > tolerance && !dist.intersecting) dist = distance_now(std::fmax(tolerance, kFinalDistanceFloor));
+        if (loop_tolerance > tolerance && !dist.intersecting)
+            dist = distance_now(std::fmax(tolerance, kFinalDistanceFloor));
         CastResult r;
         r.hit = true;
         r.toi = t0;
@@ -298,8 +301,8 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
                 if (curvature > 0) span = std::fmin(span, std::fmax(4 * h, std::sqrt(2 * sep / curvature)));
                 for (int trial = 0; trial < 6 && span > h; ++trial, span *= 0.25) {
                     const double centre = std::fmin(dot(n, c0), dot(n, c0 + span * linear_rel));
-                    const double lower = centre - body_a.support_bound(n, pa, span) - body_b.support_bound(-n, pb, span) -
-                                         kRounding * size;
+                    const double lower = centre - body_a.support_bound(n, pa, span) -
+                                         body_b.support_bound(-n, pb, span) - kRounding * size;
                     if (lower > delta) {
                         h = span;
                         break;

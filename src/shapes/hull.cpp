@@ -114,7 +114,8 @@ constexpr double kThinTolerance = 1e-12;
 // the drops from compounding within a round, a point goes by the thin part only when no
 // neighbour goes in the same round.
 void select_vertices(const std::vector<Vec3>& p, const std::vector<Face>& faces, double thin, bool keep_all,
-                     std::vector<uint32_t>& kept, std::vector<uint32_t>& all, std::vector<std::pair<uint32_t, uint32_t>>& edges) {
+                     std::vector<uint32_t>& kept, std::vector<uint32_t>& all,
+                     std::vector<std::pair<uint32_t, uint32_t>>& edges) {
     const size_t n = p.size();
     std::vector<uint32_t> exact_bends(n, 0), thin_bends(n, 0), any_face(n, kNone);
     std::vector<std::array<uint32_t, 2>> needle(n, {kNone, kNone});
@@ -218,8 +219,8 @@ namespace {
 // test dropped the extreme of such a run when rounding sorted it before its neighbours). Then,
 // in rounds, a vertex within thin of the segment between its neighbours goes (the polygon moves
 // by at most thin per round; a vertex whose neighbour goes waits for the next round).
-std::vector<uint32_t> polygon_vertices(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 origin, Vec3 u,
-                                       Vec3 w, double thin) {
+std::vector<uint32_t> polygon_vertices(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 origin,
+                                       Vec3 u, Vec3 w, double thin) {
     struct Planar {
         double x, y;
         uint32_t id;
@@ -314,7 +315,8 @@ void solid_hull(const std::vector<Vec3>& p, std::vector<uint32_t> ids, std::arra
 }
 
 // Packs the chosen vertices (indices into `points`) and, for a climbing hull, the edge graph.
-ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<Vec3>& p, const std::vector<uint32_t>& hull_vertices,
+ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<Vec3>& p,
+                           const std::vector<uint32_t>& hull_vertices,
                            const std::vector<std::pair<uint32_t, uint32_t>>& edges, uint8_t dimension);
 
 }  // namespace
@@ -332,7 +334,8 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     std::frexp(largest, &exponent);
     std::vector<Vec3> p(count);
     for (size_t i = 0; i < count; ++i)
-        p[i] = {std::ldexp(points[i].x, -exponent), std::ldexp(points[i].y, -exponent), std::ldexp(points[i].z, -exponent)};
+        p[i] = {std::ldexp(points[i].x, -exponent), std::ldexp(points[i].y, -exponent),
+                std::ldexp(points[i].z, -exponent)};
 
     // Extreme points along the widest axis of the bounding box (first index on ties).
     Vec3 lo = p[0], hi = p[0];
@@ -345,7 +348,7 @@ HullStatus make_convex_hull(const Vec3* points, size_t count, ConvexHullShape** 
     const double extent = size[axis];
     std::vector<uint32_t> hull_vertices;
     std::vector<std::pair<uint32_t, uint32_t>> edges;  // (smaller, larger) per hull edge
-    if (!(extent > 0)) {  // one point, repeated
+    if (!(extent > 0)) {                               // one point, repeated
         hull_vertices = {0};
         *out_shape = pack_hull(points, count, p, hull_vertices, edges, 0);
         return HullStatus::Ok;
@@ -432,9 +435,10 @@ HullStatus make_triangle(Vec3 a, Vec3 b, Vec3 c, ConvexHullShape** out_shape) {
 
 namespace {
 
-ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<Vec3>& p, const std::vector<uint32_t>& hull_vertices,
+ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<Vec3>& p,
+                           const std::vector<uint32_t>& hull_vertices,
                            const std::vector<std::pair<uint32_t, uint32_t>>& edges, uint8_t dimension) {
-// Vertex order: input order; a climbing hull puts its seeds first (then input order).
+    // Vertex order: input order; a climbing hull puts its seeds first (then input order).
     const bool climbs = hull_vertices.size() > ConvexHullShape::kHillClimbThreshold;
     std::vector<uint32_t> order;
     order.reserve(hull_vertices.size());

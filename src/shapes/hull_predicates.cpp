@@ -124,9 +124,11 @@ double point_segment_distance(Vec3 x, Vec3 a, Vec3 b) {
 double point_triangle_distance(Vec3 x, Vec3 a, Vec3 b, Vec3 c) {
     const Vec3 n = cross(b - a, c - a);
     const double n2 = length_sq(n);
-    if (n2 > 0 && dot(cross(b - a, x - a), n) >= 0 && dot(cross(c - b, x - b), n) >= 0 && dot(cross(a - c, x - c), n) >= 0)
+    if (n2 > 0 && dot(cross(b - a, x - a), n) >= 0 && dot(cross(c - b, x - b), n) >= 0 &&
+        dot(cross(a - c, x - c), n) >= 0)
         return std::fabs(orient(a, b, c, x).value) / std::sqrt(n2);  // projects inside: the plane distance
-    return std::min({point_segment_distance(x, a, b), point_segment_distance(x, b, c), point_segment_distance(x, c, a)});
+    return std::min(
+        {point_segment_distance(x, a, b), point_segment_distance(x, b, c), point_segment_distance(x, c, a)});
 }
 
 }  // namespace kairos::hull_detail

@@ -6,7 +6,8 @@
 
 namespace kairos::hull_detail {
 
-uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 a, Vec3 b, double& out_dist) {
+uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 a, Vec3 b,
+                            double& out_dist) {
     const Vec3 u = normalized_or(b - a, {1, 0, 0});
     uint32_t best = ids[0];
     out_dist = -1;
@@ -20,8 +21,8 @@ uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32
     return best;
 }
 
-uint32_t farthest_from_plane(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, uint32_t a, uint32_t b, uint32_t c,
-                             double& out_det) {
+uint32_t farthest_from_plane(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, uint32_t a, uint32_t b,
+                             uint32_t c, double& out_det) {
     uint32_t best = ids[0];
     out_det = -1;
     for (uint32_t i : ids) {

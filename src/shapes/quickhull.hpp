@@ -34,7 +34,8 @@ class Quickhull {
 public:
     // `thin`: a point at most this far above every face (but possibly exactly outside) is taken
     // as on the hull and dropped.
-    Quickhull(const std::vector<Vec3>& p, double thin) : pts_(p), thin_(thin), next_(p.size(), kNone), horizon_from_(p.size(), kNone) {
+    Quickhull(const std::vector<Vec3>& p, double thin)
+        : pts_(p), thin_(thin), next_(p.size(), kNone), horizon_from_(p.size(), kNone) {
         faces_.reserve(2 * p.size() + 8);  // a hull of n points has at most 2n - 4 faces
     }
 
@@ -105,7 +106,8 @@ private:
         const Vec3 a = pts_[f.v[0]];
         const Vec3 w = pts_[q] - a;
         const double det = dot(f.normal, w);
-        const double permanent = f.weight.x * std::fabs(w.x) + f.weight.y * std::fabs(w.y) + f.weight.z * std::fabs(w.z);
+        const double permanent =
+            f.weight.x * std::fabs(w.x) + f.weight.y * std::fabs(w.y) + f.weight.z * std::fabs(w.z);
         // Three correct digits or more: the value serves the thin decisions as it is.
         if (permanent > 1e-280 && std::fabs(det) > 4e-12 * permanent) return {det, det > 0 ? 1 : -1};
         return orient(a, pts_[f.v[1]], pts_[f.v[2]], pts_[q]);
@@ -246,10 +248,11 @@ private:
 };
 
 // Index of the point of `ids` farthest from the line through a and b (Euclidean, rounded).
-uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 a, Vec3 b, double& out_dist);
+uint32_t farthest_from_line(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, Vec3 a, Vec3 b,
+                            double& out_dist);
 // Index of the point of `ids` with the largest |orient(a, b, c, .)| (rounded): the farthest from
 // the plane of a, b, c, measured without forming the plane's normal.
-uint32_t farthest_from_plane(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, uint32_t a, uint32_t b, uint32_t c,
-                             double& out_det);
+uint32_t farthest_from_plane(const std::vector<Vec3>& p, const std::vector<uint32_t>& ids, uint32_t a, uint32_t b,
+                             uint32_t c, double& out_det);
 
 }  // namespace kairos::hull_detail

@@ -79,7 +79,8 @@ double extreme_radius(const Shape& s, Vec3 u) {
         }
         case ShapeKind::ConvexHull: {
             double best = 0;
-            for (const Vec3& v : static_cast<const ConvexHullShape&>(s).vertices) best = std::max(best, distance_from_axis(v, u));
+            for (const Vec3& v : static_cast<const ConvexHullShape&>(s).vertices)
+                best = std::max(best, distance_from_axis(v, u));
             return best;
         }
         case ShapeKind::HullOfTwo: {

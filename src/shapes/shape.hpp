@@ -16,18 +16,18 @@ namespace kairos {
 
 enum class ShapeKind : uint8_t {
     Point,
-    Segment,      // (0,0,-h) .. (0,0,+h)
-    Sphere,       // radius about the origin
-    Box,          // [-h, h] per axis
-    Capsule,      // segment (0,0,+-h) grown by radius
-    Cylinder,     // radius, z in [-h, h]
-    Cone,         // apex (0,0,+h), base disk radius r at z = -h
-    ConvexHull,   // vertices of a convex polytope
-    Transformed,  // x -> linear * x + translation of a child
-    MinkowskiSum, // a + b
-    HullOfTwo,    // conv(a u b)
-    Disk,         // radius about the origin, perpendicular to a unit normal: internal, the
-                  // rotation bound of a turning shape (docs/algorithms.md §4); not in the C API
+    Segment,       // (0,0,-h) .. (0,0,+h)
+    Sphere,        // radius about the origin
+    Box,           // [-h, h] per axis
+    Capsule,       // segment (0,0,+-h) grown by radius
+    Cylinder,      // radius, z in [-h, h]
+    Cone,          // apex (0,0,+h), base disk radius r at z = -h
+    ConvexHull,    // vertices of a convex polytope
+    Transformed,   // x -> linear * x + translation of a child
+    MinkowskiSum,  // a + b
+    HullOfTwo,     // conv(a u b)
+    Disk,          // radius about the origin, perpendicular to a unit normal: internal, the
+                   // rotation bound of a turning shape (docs/algorithms.md §4); not in the C API
 };
 
 // Base of every shape. Reference counted (atomic), immutable after construction. Composites
@@ -98,7 +98,8 @@ struct ConvexHullShape final : Shape {
 };
 
 struct TransformedShape final : Shape {
-    TransformedShape(const Shape& c, const Mat3& l, Vec3 t) : Shape(ShapeKind::Transformed), child(&c), linear(l), translation(t) {
+    TransformedShape(const Shape& c, const Mat3& l, Vec3 t)
+        : Shape(ShapeKind::Transformed), child(&c), linear(l), translation(t) {
         child->retain();
     }
     ~TransformedShape() override { child->release(); }
@@ -111,7 +112,10 @@ struct MinkowskiSumShape final : Shape {
         a->retain();
         b->retain();
     }
-    ~MinkowskiSumShape() override { a->release(); b->release(); }
+    ~MinkowskiSumShape() override {
+        a->release();
+        b->release();
+    }
     const Shape* a;
     const Shape* b;
 };
@@ -120,7 +124,10 @@ struct HullOfTwoShape final : Shape {
         a->retain();
         b->retain();
     }
-    ~HullOfTwoShape() override { a->release(); b->release(); }
+    ~HullOfTwoShape() override {
+        a->release();
+        b->release();
+    }
     const Shape* a;
     const Shape* b;
 };

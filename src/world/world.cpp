@@ -170,7 +170,8 @@ World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) co
     const Vec3 local_axis = s.start.to_local_direction(s.axis);
     const double rho = extreme_radius(*o.shape, local_axis);
     s.disk = motion.disk_radius(rho, 0, 1);
-    const double h = std::fmax(dot(local_axis, support(*o.shape, local_axis)), -dot(local_axis, support(*o.shape, -local_axis)));
+    const double h =
+        std::fmax(dot(local_axis, support(*o.shape, local_axis)), -dot(local_axis, support(*o.shape, -local_axis)));
     const double ball = std::sqrt(rho * rho + h * h);
     Aabb rel0, rel1;
     bounds(*o.shape, Transform{s.start.rotation, {}}, rel0.min, rel0.max);
@@ -276,8 +277,8 @@ struct SweptSupport {
     double shift;     // v . translation
 };
 
-SweptSupport swept_support(const Shape& s, const Transform& start, Vec3 translation, bool rotates, Vec3 axis, double disk,
-                           Vec3 v) {
+SweptSupport swept_support(const Shape& s, const Transform& start, Vec3 translation, bool rotates, Vec3 axis,
+                           double disk, Vec3 v) {
     SweptSupport r;
     r.hi0 = dot(v, support(s, start, v));
     r.lo0 = dot(v, support(s, start, -v));
@@ -334,7 +335,8 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
             // times the sum of their bounding radii, at most sqrt(3) times a box's reach from
             // the origin), so only a wider gap rules a contact out.
             auto reach = [](const Object& o, const Sweep& sw) {
-                return std::sqrt(3.0) * std::fmax(max_abs(o.box.min - sw.start.translation), max_abs(o.box.max - sw.start.translation));
+                return std::sqrt(3.0) *
+                       std::fmax(max_abs(o.box.min - sw.start.translation), max_abs(o.box.max - sw.start.translation));
             };
             const double size = max_extent(oa.box) + max_extent(ob.box) + max_abs(sa.translation) +
                                 max_abs(sb.translation) + max_abs(sb.start.translation - sa.start.translation) +
@@ -368,7 +370,8 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
             // Missed: keep a separating axis of the end poses (the next step's start) for the
             // next step, found from the old axis or from the line between the origins.
             Vec3 axis = seed;
-            if (!(dot(axis, axis) > 0)) axis = (sb.start.translation + sb.translation) - (sa.start.translation + sa.translation);
+            if (!(dot(axis, axis) > 0))
+                axis = (sb.start.translation + sb.translation) - (sa.start.translation + sa.translation);
             uint32_t it = 0;
             const Pose end_a = swept_[ia] ? oa.end : oa.pose;
             const Pose end_b = swept_[ib] ? ob.end : ob.pose;

@@ -16,14 +16,13 @@
 
 namespace kairos {
 
-
 // The first contact of a pair in a step. World frame.
 struct Contact {
     uint64_t a = 0, b = 0;  // ids, a < b
     uint64_t user_a = 0, user_b = 0;
-    double toi = 1;         // fraction of the step in [0, 1]
-    Vec3 point;             // contact point at toi
-    Vec3 normal;            // unit, from a toward b
+    double toi = 1;  // fraction of the step in [0, 1]
+    Vec3 point;      // contact point at toi
+    Vec3 normal;     // unit, from a toward b
 };
 
 // A broad-phase pair of the last step: ids (a < b) and the first moment their boxes overlap.
@@ -36,25 +35,25 @@ struct WorldPair {
 struct StepCounters {
     uint64_t broad_phase_pairs = 0, swaps = 0, heap_operations = 0, narrow_phase_queries = 0, gjk_iterations = 0;
     double broad_phase_seconds = 0, narrow_phase_seconds = 0;
-    uint64_t moving_objects = 0;     // objects given a move that changes their pose
-    uint64_t rotating_objects = 0;   // of which turn
-    uint64_t axis_rejections = 0;    // pairs a cached separating axis ruled out without a cast
-    uint64_t false_positives = 0;    // broad-phase pairs whose boxes never overlap (encapsulating)
+    uint64_t moving_objects = 0;    // objects given a move that changes their pose
+    uint64_t rotating_objects = 0;  // of which turn
+    uint64_t axis_rejections = 0;   // pairs a cached separating axis ruled out without a cast
+    uint64_t false_positives = 0;   // broad-phase pairs whose boxes never overlap (encapsulating)
     uint64_t contacts = 0;
 };
 
 struct WorldSettings {
     BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
-    double tolerance = 1e-10;      // relative accuracy of the casts (docs/c-api.md "Tolerances")
-    uint32_t max_iterations = 256; // a guard only
+    double tolerance = 1e-10;       // relative accuracy of the casts (docs/c-api.md "Tolerances")
+    uint32_t max_iterations = 256;  // a guard only
 };
 
 class World {
 public:
     struct Object {
         const Shape* shape = nullptr;  // holds one reference while alive
-        Pose pose;                // pose now (start of the next step)
-        Pose end;                 // pose at the end of the next step, when `moving`
+        Pose pose;                     // pose now (start of the next step)
+        Pose end;                      // pose at the end of the next step, when `moving`
         Aabb box;                      // the broad phase's box now: the tight box at `pose` grown by
                                        // the margin, or larger after a turn (`loose`)
         bool moving = false;
@@ -108,17 +107,17 @@ public:
 private:
     // What the narrow phase needs of an object during one step.
     struct Sweep {
-        Transform start;          // rigid pose at t = 0
-        Vec3 translation;    // of the local origin over the step
-        Vec3 axis;           // world rotation axis (unit) when turning
-        double disk = 0;     // disk bound of the turn (docs/algorithms.md §4); 0 when not turning
+        Transform start;   // rigid pose at t = 0
+        Vec3 translation;  // of the local origin over the step
+        Vec3 axis;         // world rotation axis (unit) when turning
+        double disk = 0;   // disk bound of the turn (docs/algorithms.md §4); 0 when not turning
         bool rotates = false;
     };
     // A separating axis found for a pair, kept for its next step (docs/algorithms.md §2).
     struct CachedAxis {
-        uint64_t key;        // slot pair (lower slot << 32 | higher slot)
-        uint64_t id_a, id_b; // the ids it was found for (a slot's next occupant must not use it)
-        Vec3 axis;           // world frame, from id_a's object toward id_b's
+        uint64_t key;         // slot pair (lower slot << 32 | higher slot)
+        uint64_t id_a, id_b;  // the ids it was found for (a slot's next occupant must not use it)
+        Vec3 axis;            // world frame, from id_a's object toward id_b's
     };
 
     Aabb tight_box(const Shape& shape, const Pose& pose, Vec3 translation) const;
@@ -130,12 +129,12 @@ private:
     std::unique_ptr<BroadPhase> broad_;
     std::vector<Object> objects_;
     std::vector<uint32_t> free_slots_;
-    std::vector<uint32_t> moved_;   // slots given a move since the last step (may repeat)
-    std::vector<uint32_t> loose_;   // slots whose box is looser than their pose needs
+    std::vector<uint32_t> moved_;  // slots given a move since the last step (may repeat)
+    std::vector<uint32_t> loose_;  // slots whose box is looser than their pose needs
     size_t live_ = 0;
 
-    std::vector<Sweep> sweeps_;     // by slot, filled for moving objects during a step
-    std::vector<uint8_t> swept_;    // by slot: sweeps_ holds this step's motion
+    std::vector<Sweep> sweeps_;   // by slot, filled for moving objects during a step
+    std::vector<uint8_t> swept_;  // by slot: sweeps_ holds this step's motion
     std::vector<CachedAxis> axes_, next_axes_;
 
     std::vector<Contact> contacts_;

@@ -63,10 +63,12 @@ int compare_pairs(const std::vector<BroadPhasePair>& ref, const std::vector<Broa
     };
     std::size_t i = 0, j = 0;
     while (i < ref.size() || j < got.size()) {
-        const bool take_ref = j == got.size() || (i < ref.size() && (ref[i].a < got[j].a ||
-                                                                     (ref[i].a == got[j].a && ref[i].b < got[j].b)));
-        const bool take_got = i == ref.size() || (j < got.size() && (got[j].a < ref[i].a ||
-                                                                     (got[j].a == ref[i].a && got[j].b < ref[i].b)));
+        const bool take_ref =
+            j == got.size() ||
+            (i < ref.size() && (ref[i].a < got[j].a || (ref[i].a == got[j].a && ref[i].b < got[j].b)));
+        const bool take_got =
+            i == ref.size() ||
+            (j < got.size() && (got[j].a < ref[i].a || (got[j].a == ref[i].a && got[j].b < ref[i].b)));
         if (take_ref) {
             fault("missed " + describe(ref[i++]));
         } else if (take_got) {
@@ -203,14 +205,14 @@ Body random_body(Rng& rng, double side, double size_lo, double size_hi, double s
 void report(const char* scene, const Harness& h) {
     const Totals& t = h.totals();
     const double moving = static_cast<double>(std::max<uint64_t>(t.moving, 1));
-    std::printf("[ scene    ] %-14s steps %3llu  pairs/object/step %.3f  per moving object and step: global swaps "
-                "%.2f, crossing tests %.2f; regions: swaps %.2f, tests %.2f  encapsulating false positives %llu of "
-                "%llu pairs\n",
-                scene, static_cast<unsigned long long>(t.steps), h.pairs_per_object(),
-                static_cast<double>(t.swaps) / moving, static_cast<double>(t.crossing_tests) / moving,
-                static_cast<double>(t.region_swaps) / moving, static_cast<double>(t.region_tests) / moving,
-                static_cast<unsigned long long>(t.false_positives),
-                static_cast<unsigned long long>(t.pairs + t.false_positives));
+    std::printf(
+        "[ scene    ] %-14s steps %3llu  pairs/object/step %.3f  per moving object and step: global swaps "
+        "%.2f, crossing tests %.2f; regions: swaps %.2f, tests %.2f  encapsulating false positives %llu of "
+        "%llu pairs\n",
+        scene, static_cast<unsigned long long>(t.steps), h.pairs_per_object(), static_cast<double>(t.swaps) / moving,
+        static_cast<double>(t.crossing_tests) / moving, static_cast<double>(t.region_swaps) / moving,
+        static_cast<double>(t.region_tests) / moving, static_cast<unsigned long long>(t.false_positives),
+        static_cast<unsigned long long>(t.pairs + t.false_positives));
 }
 
 // ---- Small, hand-made cases ------------------------------------------------------------------
@@ -355,7 +357,8 @@ TEST(BroadPhase, FlockCausesNoSwap) {
             Body b = random_body(rng, 12, 0.5, 1.5, 0);
             // Exact ties too: a quarter of the bodies snap to a grid of halves.
             if (i % 4 == 0) {
-                b.box.min = {std::round(2 * b.box.min.x) / 2, std::round(2 * b.box.min.y) / 2, std::round(2 * b.box.min.z) / 2};
+                b.box.min = {std::round(2 * b.box.min.x) / 2, std::round(2 * b.box.min.y) / 2,
+                             std::round(2 * b.box.min.z) / 2};
                 b.box.max = b.box.min + Vec3{1, 1, 1};
             }
             b.velocity = common;
@@ -579,7 +582,8 @@ TEST(BroadPhase, BitIdenticalTwice) {
 TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
     for (int n : {1000, 10000}) {
         uint64_t batch_swaps = 0;
-        for (auto kind : {BroadPhaseKind::SpacetimeSapGlobal, BroadPhaseKind::SpacetimeSapQueued, BroadPhaseKind::SpacetimeSap}) {
+        for (auto kind :
+             {BroadPhaseKind::SpacetimeSapGlobal, BroadPhaseKind::SpacetimeSapQueued, BroadPhaseKind::SpacetimeSap}) {
             Rng rng(91);
             auto sap = BroadPhase::create(kind);
             const double side = std::cbrt(n / 0.10);
@@ -604,10 +608,11 @@ TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
             }
             const double scale = static_cast<double>(n) * steps;
             const double per_object = static_cast<double>(swaps) / scale;
-            std::printf("[ uniform  ] %-20s N = %5d  swaps per moving object per step %.2f  crossing tests %.2f  "
-                        "heap operations %.2f  pairs per step %.1f\n",
-                        to_string(kind), n, per_object, static_cast<double>(tests) / scale,
-                        static_cast<double>(heap_ops) / scale, static_cast<double>(pairs) / steps);
+            std::printf(
+                "[ uniform  ] %-20s N = %5d  swaps per moving object per step %.2f  crossing tests %.2f  "
+                "heap operations %.2f  pairs per step %.1f\n",
+                to_string(kind), n, per_object, static_cast<double>(tests) / scale,
+                static_cast<double>(heap_ops) / scale, static_cast<double>(pairs) / steps);
             if (kind == BroadPhaseKind::SpacetimeSap) {
                 // Regions: far fewer swaps (only neighbours within a column change order).
                 EXPECT_LT(per_object, 3.0);

@@ -40,7 +40,8 @@ TEST(Magnitudes, HugeTranslationIsRefusedByName) {
               KAIROS_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(kairos_last_error()).find("translation_a.x"), std::string::npos) << kairos_last_error();
     EXPECT_EQ(std::memcmp(&out, &before, sizeof out), 0);
-    EXPECT_EQ(kairos_ray_cast(hull.s, nullptr, {0, 0, -1e200}, {0, 0, 1}, nullptr, &out), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(kairos_ray_cast(hull.s, nullptr, {0, 0, -1e200}, {0, 0, 1}, nullptr, &out),
+              KAIROS_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(kairos_last_error()).find("origin.z"), std::string::npos) << kairos_last_error();
     const kairos_pose far = at(0, -1e101, 0);
     kairos_distance_result d;
@@ -96,7 +97,8 @@ TEST(Magnitudes, EveryQueryAtEveryScaleIsFinite) {
             ASSERT_TRUE(status == KAIROS_OK || status == KAIROS_ERROR_INVALID_ARGUMENT) << kairos_status_name(status);
             if (status == KAIROS_OK) {
                 ++ok;
-                ASSERT_TRUE(std::isfinite(d.distance) && finite3(d.point_a) && finite3(d.point_b) && finite3(d.axis)) << "scale 1e" << e;
+                ASSERT_TRUE(std::isfinite(d.distance) && finite3(d.point_a) && finite3(d.point_b) && finite3(d.axis))
+                    << "scale 1e" << e;
                 ASSERT_GE(d.distance, 0);
             }
             kairos_cast_result r;
@@ -105,7 +107,8 @@ TEST(Magnitudes, EveryQueryAtEveryScaleIsFinite) {
             if (status == KAIROS_OK) {
                 ASSERT_TRUE(std::isfinite(r.toi) && finite3(r.point) && finite3(r.normal)) << "scale 1e" << e;
             }
-            const kairos_motion ma{pa, {{pa.position.x + ta.x, pa.position.y, pa.position.z}, {0, 0, std::sqrt(0.5), std::sqrt(0.5)}}};
+            const kairos_motion ma{
+                pa, {{pa.position.x + ta.x, pa.position.y, pa.position.z}, {0, 0, std::sqrt(0.5), std::sqrt(0.5)}}};
             const kairos_motion mb{pb, pb};
             status = kairos_motion_cast(a, &ma, b, &mb, nullptr, &r);
             ASSERT_TRUE(status == KAIROS_OK || status == KAIROS_ERROR_INVALID_ARGUMENT);
@@ -132,7 +135,8 @@ TEST(Magnitudes, BoundsOfAFlatShapeFarAwayAreOrdered) {
     Owned triangle, moved;
     ASSERT_EQ(kairos_shape_convex_hull(corners, 3, &triangle.s), KAIROS_OK);
     ASSERT_EQ(kairos_shape_transformed(triangle.s, linear, {1e15, 1e15, 1e15}, &moved.s), KAIROS_OK);
-    const kairos_pose pose = {{9.2941176470588236e-191, -3.5576409552147701e-191, 9.6078431372549014e-191}, {-0.0001, 0, 0, 1}};
+    const kairos_pose pose = {{9.2941176470588236e-191, -3.5576409552147701e-191, 9.6078431372549014e-191},
+                              {-0.0001, 0, 0, 1}};
     kairos_vec3 lo, hi;
     ASSERT_EQ(kairos_shape_bounds(moved.s, &pose, &lo, &hi), KAIROS_OK);
     EXPECT_LE(lo.x, hi.x);
@@ -167,7 +171,8 @@ TEST(DistanceContract, ZeroDistanceIsAnIntersectionWithOnePoint) {
 TEST(CastContract, GuardStoppedHitStillOpposesTheMotion) {
     Owned ball;
     ASSERT_EQ(kairos_shape_sphere(1, &ball.s), KAIROS_OK);
-    const kairos_pose pa = {{-3.456656748302434, -3.988891432059205, -0.031189440756847375}, {0, 1, 0, 0}}, pb = at(0, 0, 0);
+    const kairos_pose pa = {{-3.456656748302434, -3.988891432059205, -0.031189440756847375}, {0, 1, 0, 0}},
+                      pb = at(0, 0, 0);
     const kairos_vec3 r{-2.4998855573357748, -9.9853513389791715, 2.5014114595254444};
     kairos_query_settings q;
     kairos_query_settings_init(&q);
@@ -262,7 +267,8 @@ TEST(MotionCastBound, GapAtAHitIsWithinToleranceTimesTheSmallerRadius) {
             const bool turning = trial % 2 == 1;
             const kairos_quat qa = random_quat(rng), qb = random_quat(rng);
             kairos_motion ma{{{0, 0, 0}, qa}, {{0, 0, 0}, turning ? random_quat(rng) : qa}};
-            kairos_motion mb{{{4 * unit(rng), 4 * unit(rng), 4 * unit(rng)}, qb}, {{unit(rng), unit(rng), unit(rng)}, qb}};
+            kairos_motion mb{{{4 * unit(rng), 4 * unit(rng), 4 * unit(rng)}, qb},
+                             {{unit(rng), unit(rng), unit(rng)}, qb}};
             if (turning) mb.end.orientation = random_quat(rng);
             kairos_cast_result r;
             ASSERT_EQ(kairos_motion_cast(a, &ma, b, &mb, &q, &r), KAIROS_OK) << kairos_last_error();
@@ -279,7 +285,8 @@ TEST(MotionCastBound, GapAtAHitIsWithinToleranceTimesTheSmallerRadius) {
                 << "tolerance " << tol << ", trial " << trial << (turning ? " (turning)" : " (translating)") << ": gap "
                 << d.distance << " > " << bound;
         }
-        std::printf("[   INFO   ] tolerance %.0e: %d hits of %d casts, largest gap / bound %.3f\n", tol, hits, casts, worst_ratio);
+        std::printf("[   INFO   ] tolerance %.0e: %d hits of %d casts, largest gap / bound %.3f\n", tol, hits, casts,
+                    worst_ratio);
         EXPECT_GT(hits, casts / 5);
         EXPECT_LT(hits, casts);
     }

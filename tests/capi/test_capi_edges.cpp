@@ -103,16 +103,21 @@ std::vector<TShape> shape_kinds(double s) {
     kairos_shape* k = nullptr;
     {
         const V h{1.0 * s, 0.7 * s, 0.4 * s};
-        out.push_back({"box", own(must(kairos_shape_box(kv(h), &k), k)), [h](V d) { return box_support(h, d); }, norm(h), true});
+        out.push_back(
+            {"box", own(must(kairos_shape_box(kv(h), &k), k)), [h](V d) { return box_support(h, d); }, norm(h), true});
     }
     {
         const double r = 0.8 * s;
-        out.push_back({"sphere", own(must(kairos_shape_sphere(r, &k), k)), [r](V d) { return ball_support(r, d); }, r, false});
+        out.push_back(
+            {"sphere", own(must(kairos_shape_sphere(r, &k), k)), [r](V d) { return ball_support(r, d); }, r, false});
     }
     {
         const double r = 0.4 * s, h = 0.6 * s;
         out.push_back({"capsule", own(must(kairos_shape_capsule(r, h, &k), k)),
-                       [r, h](V d) { return ball_support(r, d) + V{0, 0, sgn(d.z) * h}; }, r + h, false});
+                       [r, h](V d) {
+                           return ball_support(r, d) + V{0, 0, sgn(d.z) * h};
+                       },
+                       r + h, false});
     }
     {
         const double r = 0.6 * s, h = 0.5 * s;
@@ -135,7 +140,11 @@ std::vector<TShape> shape_kinds(double s) {
     }
     {
         const double h = 0.9 * s;
-        out.push_back({"segment", own(must(kairos_shape_segment(h, &k), k)), [h](V d) { return V{0, 0, sgn(d.z) * h}; }, h, true});
+        out.push_back({"segment", own(must(kairos_shape_segment(h, &k), k)),
+                       [h](V d) {
+                           return V{0, 0, sgn(d.z) * h};
+                       },
+                       h, true});
     }
     out.push_back({"point", own(must(kairos_shape_point(&k), k)), [](V) { return V{0, 0, 0}; }, 0.5 * s, true});
     {
@@ -156,7 +165,10 @@ std::vector<TShape> shape_kinds(double s) {
                        [p](V d) { return points_support(p, d); }, 0.95 * s, true});
     }
     {
-        const std::vector<V> p{{-0.7 * s, -0.6 * s, 0.1 * s}, {0.8 * s, -0.5 * s, 0.1 * s}, {0.6 * s, 0.7 * s, 0.1 * s}, {-0.5 * s, 0.6 * s, 0.1 * s}};
+        const std::vector<V> p{{-0.7 * s, -0.6 * s, 0.1 * s},
+                               {0.8 * s, -0.5 * s, 0.1 * s},
+                               {0.6 * s, 0.7 * s, 0.1 * s},
+                               {-0.5 * s, 0.6 * s, 0.1 * s}};
         std::vector<kairos_vec3> kp;
         for (const V& q : p) kp.push_back(kv(q));
         out.push_back({"flat hull", own(must(kairos_shape_convex_hull(kp.data(), kp.size(), &k), k)),
@@ -171,9 +183,16 @@ std::vector<TShape> shape_kinds(double s) {
         kairos_shape* t = nullptr;
         must(kairos_shape_transformed(inner, L, kv(o), &t), t);
         kairos_shape_release(inner);
-        auto lin = [L](V p) { return V{L[0] * p.x + L[1] * p.y + L[2] * p.z, L[3] * p.x + L[4] * p.y + L[5] * p.z, L[6] * p.x + L[7] * p.y + L[8] * p.z}; };
-        auto lin_t = [L](V p) { return V{L[0] * p.x + L[3] * p.y + L[6] * p.z, L[1] * p.x + L[4] * p.y + L[7] * p.z, L[2] * p.x + L[5] * p.y + L[8] * p.z}; };
-        out.push_back({"transformed box", own(t), [=](V d) { return lin(box_support(h, lin_t(d))) + o; }, 1.2 * s, true});
+        auto lin = [L](V p) {
+            return V{L[0] * p.x + L[1] * p.y + L[2] * p.z, L[3] * p.x + L[4] * p.y + L[5] * p.z,
+                     L[6] * p.x + L[7] * p.y + L[8] * p.z};
+        };
+        auto lin_t = [L](V p) {
+            return V{L[0] * p.x + L[3] * p.y + L[6] * p.z, L[1] * p.x + L[4] * p.y + L[7] * p.z,
+                     L[2] * p.x + L[5] * p.y + L[8] * p.z};
+        };
+        out.push_back(
+            {"transformed box", own(t), [=](V d) { return lin(box_support(h, lin_t(d))) + o; }, 1.2 * s, true});
     }
     {
         // A rounded box (box + sphere) and a rounded triangle.
@@ -184,7 +203,8 @@ std::vector<TShape> shape_kinds(double s) {
         must(kairos_shape_minkowski_sum(b, ball, &sum), sum);
         kairos_shape_release(b);
         kairos_shape_release(ball);
-        out.push_back({"box+sphere", own(sum), [h, r](V d) { return box_support(h, d) + ball_support(r, d); }, norm(h) + r, false});
+        out.push_back({"box+sphere", own(sum), [h, r](V d) { return box_support(h, d) + ball_support(r, d); },
+                       norm(h) + r, false});
     }
     {
         // The hull of a segment and a displaced... in one frame: a segment along z and a box.
@@ -232,7 +252,7 @@ bool near_shape(const Posed& s, V p, V extra, double eps) {
 
 struct Tally {
     int separated = 0, intersecting = 0, cases = 0;
-    double worst_rel = 0;  // worst |distance - g| / size on constructed gaps
+    double worst_rel = 0;                      // worst |distance - g| / size on constructed gaps
     std::map<std::string, int> failures;       // per check and pair of kinds
     std::map<std::string, std::string> first;  // the first failing case of each
     void fail(const std::string& key, const std::string& detail) {
@@ -249,8 +269,8 @@ std::string fmt(const char* f, double x, double y) {
 // One query in one argument order, checked against the constructed gap g along n (from a to b).
 // deep: the contact is not a graze (see the casts below); ray_origin: B's contact point, for a ray
 // cast onto A (null: no ray, as when A's contact point is B's support point, which may be a corner).
-void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool deep, const V* ray_origin, const std::string& kinds,
-                const std::string& what, Tally& t) {
+void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool deep, const V* ray_origin,
+                const std::string& kinds, const std::string& what, Tally& t) {
     const bool exact = a.s->polytope && b.s->polytope;
     const double tol = (exact ? 1e-12 : 1e-9) * size, band = 1e-9 * size;
     kairos_pose pa = a.pose(), pb = b.pose();
@@ -259,14 +279,14 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool
     ++t.cases;
     auto pose_text = [](const kairos_pose& p) {
         char buf[256];
-        std::snprintf(buf, sizeof buf, "p (%.17g, %.17g, %.17g) q (%.17g, %.17g, %.17g, %.17g)", p.position.x, p.position.y, p.position.z,
-                      p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w);
+        std::snprintf(buf, sizeof buf, "p (%.17g, %.17g, %.17g) q (%.17g, %.17g, %.17g, %.17g)", p.position.x,
+                      p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w);
         return std::string(buf);
     };
     auto check = [&](bool ok, const std::string& name, const std::string& detail) {
         if (!ok)
-            t.fail(name + " " + kinds, what + ": " + detail + " (termination " + std::to_string(r.termination) + "); A at " + pose_text(pa) +
-                                           ", B at " + pose_text(pb));
+            t.fail(name + " " + kinds, what + ": " + detail + " (termination " + std::to_string(r.termination) +
+                                           "); A at " + pose_text(pa) + ", B at " + pose_text(pb));
     };
     check(std::isfinite(r.distance), "finite", "");
     const V qa = fromk(r.point_a), qb = fromk(r.point_b), axis = fromk(r.axis);
@@ -289,8 +309,11 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool
         // Within the band (shapes touching within 1e-9 of the size) the axis is a rounding artefact.
         const double sep = -b.h(-axis) - a.h(axis);
         const double tilt_allowance = 1e-8 * size + 1e-12 * size * size / std::max(r.distance, 1e-300);
-        if (r.distance > band) check(sep >= r.distance - tol - tilt_allowance, "axis", fmt("distance %.17g separation %.17g", r.distance, sep));
-        check(std::fabs(norm(qb - qa) - r.distance) <= tol, "witness-apart", fmt("distance %.17g apart %.17g", r.distance, norm(qb - qa)));
+        if (r.distance > band)
+            check(sep >= r.distance - tol - tilt_allowance, "axis",
+                  fmt("distance %.17g separation %.17g", r.distance, sep));
+        check(std::fabs(norm(qb - qa) - r.distance) <= tol, "witness-apart",
+              fmt("distance %.17g apart %.17g", r.distance, norm(qb - qa)));
         check(near_shape(a, qa, axis, tol) && near_shape(b, qb, -axis, tol), "witness-on-shape", "");
         // Negative gaps need not overlap (flat shapes: a point 1e-12 below a triangle's corner is
         // 1e-12 away), so the value is checked from 0 up.
@@ -314,12 +337,16 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool
         kairos_cast_result c{};
         ASSERT_EQ(kairos_shape_cast(a.s->k.get(), &pa, kv(ta), b.s->k.get(), &pb, kv(tb), nullptr, &c), KAIROS_OK);
         check(c.hit == 1, "shape-cast-miss", fmt("truth %.17g %.0g", truth, 0));
-        if (c.hit == 1) check(c.toi <= truth + 1e-9 && c.toi >= truth - 1e-7, "shape-cast-toi", fmt("toi %.17g truth %.17g", c.toi, truth));
+        if (c.hit == 1)
+            check(c.toi <= truth + 1e-9 && c.toi >= truth - 1e-7, "shape-cast-toi",
+                  fmt("toi %.17g truth %.17g", c.toi, truth));
         if (ray_origin != nullptr) {
             kairos_cast_result ray{};
             ASSERT_EQ(kairos_ray_cast(a.s->k.get(), &pa, kv(*ray_origin), kv(tb), nullptr, &ray), KAIROS_OK);
             check(ray.hit == 1, "ray-cast-miss", fmt("truth %.17g %.0g", truth, 0));
-            if (ray.hit == 1) check(ray.toi <= truth + 1e-9 && ray.toi >= truth - 1e-7, "ray-cast-toi", fmt("toi %.17g truth %.17g", ray.toi, truth));
+            if (ray.hit == 1)
+                check(ray.toi <= truth + 1e-9 && ray.toi >= truth - 1e-7, "ray-cast-toi",
+                      fmt("toi %.17g truth %.17g", ray.toi, truth));
         }
     }
     // kairos_intersect agrees with the sign beyond the band.
@@ -329,7 +356,8 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool
     if (g > band) check(hit == 0, "intersect-verdict", fmt("touching at gap %.3g %.0g", g, 0));
     // The two verdicts agree beyond the band (at gaps within it either may say touching).
     if (r.intersecting && g < -band) check(hit == 1, "intersect-vs-distance", "distance says intersecting");
-    if (!r.intersecting && r.distance > band) check(hit == 0, "intersect-vs-distance", fmt("distance %.17g %.0g", r.distance, 0));
+    if (!r.intersecting && r.distance > band)
+        check(hit == 0, "intersect-vs-distance", fmt("distance %.17g %.0g", r.distance, 0));
     // Its separating axis, where the verdict is judged (within the band the axis is as uncertain
     // as the sign: its tilt grows as eps size / distance).
     if (hit == 0 && g > band) {
@@ -407,11 +435,13 @@ Rot from_quat(const double* q) {
 
 // FCL issue 319's cylinder rotation (rows of the report) as a quaternion.
 Rot fcl319_cylinder_rotation() {
-    const double m[9] = {-0.99999999997999022838, 6.2572835802045040178e-10, 6.3260669852976095481e-06,
-                         6.3260669851683709551e-06, -6.3943303429958554955e-10, 0.99999999997999056145,
-                         6.2573180158128459924e-10, 1, 6.3942912945996747041e-10};
+    const double m[9] = {
+        -0.99999999997999022838,    6.2572835802045040178e-10, 6.3260669852976095481e-06, 6.3260669851683709551e-06,
+        -6.3943303429958554955e-10, 0.99999999997999056145,    6.2573180158128459924e-10, 1,
+        6.3942912945996747041e-10};
     double q[4];
-    const double t0 = 1 + m[0] - m[4] - m[8], t1 = 1 - m[0] + m[4] - m[8], t2 = 1 - m[0] - m[4] + m[8], t3 = 1 + m[0] + m[4] + m[8];
+    const double t0 = 1 + m[0] - m[4] - m[8], t1 = 1 - m[0] + m[4] - m[8], t2 = 1 - m[0] - m[4] + m[8],
+                 t3 = 1 + m[0] + m[4] + m[8];
     if (t1 >= t0 && t1 >= t2 && t1 >= t3) {
         const double s = 2 * std::sqrt(t1);
         q[1] = s / 4, q[0] = (m[1] + m[3]) / s, q[2] = (m[5] + m[7]) / s, q[3] = (m[2] - m[6]) / s;
@@ -435,7 +465,8 @@ TEST(GjkEdges, FclIssue319CylinderBoxBothOrders) {
     ASSERT_EQ(kairos_shape_box({0.0125, 0.175, 0.9225}, &box), KAIROS_OK);
     const Rot rc = fcl319_cylinder_rotation();
     const double* q = rc.q;
-    const kairos_pose pc{{0.57500009756757608503, -0.42711963046787942977, 1.1867093358746836351}, {q[0], q[1], q[2], q[3]}};
+    const kairos_pose pc{{0.57500009756757608503, -0.42711963046787942977, 1.1867093358746836351},
+                         {q[0], q[1], q[2], q[3]}};
     const double h = std::sqrt(0.5);
     const kairos_pose pbx{{0.8, -0.4575, 1.0225}, {0, 0, h, h}};  // rows (0,-1,0),(1,0,0),(0,0,1): +90 deg about z
     const Query r = both_orders(cyl, pc, box, pbx);
@@ -469,16 +500,20 @@ TEST(GjkEdges, FclIssue319NeighbourhoodBothOrdersAgree) {
         const V s = rl > 0 ? V{0.05 * l.x / rl, 0.05 * l.y / rl, sgn(l.z) * 0.03} : V{0, 0, sgn(l.z) * 0.03};
         return dot(apply(rc, s) + c, d);
     };
-    auto h_box = [&](V d) { return dot(apply(rb, box_support({0.0125, 0.175, 0.9225}, apply_t(rb, d))) + V{0.8, -0.4575, 1.0225}, d); };
+    auto h_box = [&](V d) {
+        return dot(apply(rb, box_support({0.0125, 0.175, 0.9225}, apply_t(rb, d))) + V{0.8, -0.4575, 1.0225}, d);
+    };
     int separated = 0, intersecting = 0;
     double worst = 0;
     for (int i = -4; i <= 4; ++i)
         for (int j = -4; j <= 4; ++j)
             for (int k = -4; k <= 4; ++k) {
-                const V c{0.57500009756757608503 + 5e-4 * i, -0.42711963046787942977 + 5e-4 * j, 1.1867093358746836351 + 5e-4 * k};
+                const V c{0.57500009756757608503 + 5e-4 * i, -0.42711963046787942977 + 5e-4 * j,
+                          1.1867093358746836351 + 5e-4 * k};
                 const kairos_pose pc{kv(c), {rc.q[0], rc.q[1], rc.q[2], rc.q[3]}};
                 const Query q = both_orders(cyl, pc, box, pbx);
-                SCOPED_TRACE(testing::Message() << "offset " << i << " " << j << " " << k << ": " << q.ab.distance << " / " << q.ba.distance);
+                SCOPED_TRACE(testing::Message() << "offset " << i << " " << j << " " << k << ": " << q.ab.distance
+                                                << " / " << q.ba.distance);
                 ASSERT_NEAR(q.ab.distance, q.ba.distance, 1e-10);  // curved: 1e-9 of the size (0.93) is the bound
                 ASSERT_EQ(q.ab.intersecting, q.ba.intersecting);
                 worst = std::max(worst, std::fabs(q.ab.distance - q.ba.distance));
@@ -491,7 +526,8 @@ TEST(GjkEdges, FclIssue319NeighbourhoodBothOrdersAgree) {
                 const double sep = -h_box(-n) - h_cyl(c, n);
                 ASSERT_GE(sep, q.ab.distance - 1e-12 - 1e-13 / std::max(q.ab.distance, 1e-300)) << "axis";
             }
-    std::printf("[fcl 319 neighbourhood] %d separated, %d intersecting, worst order disagreement %.3g\n", separated, intersecting, worst);
+    std::printf("[fcl 319 neighbourhood] %d separated, %d intersecting, worst order disagreement %.3g\n", separated,
+                intersecting, worst);
     EXPECT_GT(separated, 100);
     EXPECT_GT(intersecting, 100);
     kairos_shape_release(cyl);
@@ -550,13 +586,17 @@ TEST(GjkEdges, RayCastNormalOnNeedleCapsulesIsNeverLate) {
         V origin, translation;
     };
     std::vector<Ray> rays = {
-        {7.0087891966124971e-300, 9967.3151750972756, {{0, 0, 0}, {0, 0, 0, 1}},
+        {7.0087891966124971e-300,
+         9967.3151750972756,
+         {{0, 0, 0}, {0, 0, 0, 1}},
          {-0.67450980392156845, -0.67450980392156845, -0.67450980392156845},
          {6.2431372549019599, 6.2431372549019599, 6.2431372549019599}},
-        {5.7656672007324327e-13, 1.3492332341496911,
+        {5.7656672007324327e-13,
+         1.3492332341496911,
          {{-2.3686274509803922, -2.3686274509803922, -2.3686274509803922},
           {0.46286995766905958, 0.46286995766905958, 0.46286995766905958, 0.59770745926609359}},
-         {-2.3686274509803922, -3.9936522468909743, -4}, {0, 1.6250247959105821, 1.6313725490196078}},
+         {-2.3686274509803922, -3.9936522468909743, -4},
+         {0, 1.6250247959105821, 1.6313725490196078}},
     };
     const uint64_t seed = 20261126;
     std::mt19937_64 rng(seed);
@@ -572,16 +612,21 @@ TEST(GjkEdges, RayCastNormalOnNeedleCapsulesIsNeverLate) {
                 const double phi = 3.14159 * u(rng);
                 const V local = unit({std::cos(phi), std::sin(phi), 0.3 * u(rng)});
                 const V dir = apply(rot, local);
-                const double reach = (rel * half + 2) / std::sqrt(local.x * local.x + local.y * local.y) * (1.5 + 0.5 * u(rng));
-                rays.push_back({rel * half, half, {{at.x, at.y, at.z}, {rot.q[0], rot.q[1], rot.q[2], rot.q[3]}},
-                                on_axis - reach * dir, 2 * reach * dir});
+                const double reach =
+                    (rel * half + 2) / std::sqrt(local.x * local.x + local.y * local.y) * (1.5 + 0.5 * u(rng));
+                rays.push_back({rel * half,
+                                half,
+                                {{at.x, at.y, at.z}, {rot.q[0], rot.q[1], rot.q[2], rot.q[3]}},
+                                on_axis - reach * dir,
+                                2 * reach * dir});
             }
         }
     }
     int hits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
         const Ray& ray = rays[i];
-        SCOPED_TRACE(testing::Message() << "ray " << i << " seed " << seed << " radius " << ray.radius << " half " << ray.half);
+        SCOPED_TRACE(testing::Message() << "ray " << i << " seed " << seed << " radius " << ray.radius << " half "
+                                        << ray.half);
         kairos_shape* cap = nullptr;
         ASSERT_EQ(kairos_shape_capsule(ray.radius, ray.half, &cap), KAIROS_OK);
         kairos_cast_result c{};
@@ -683,8 +728,10 @@ TEST(GjkEdges, DistanceWhoseSquareUnderflows) {
         // Far below rounding of the size: touching (distance 0) or the distance itself, either way
         // with a unit axis.
         for (const auto* r : {&q.ab, &q.ba}) {
-            if (r->intersecting == 0) EXPECT_NEAR(r->distance / d, 1, 1e-12);
-            else EXPECT_EQ(r->distance, 0);
+            if (r->intersecting == 0)
+                EXPECT_NEAR(r->distance / d, 1, 1e-12);
+            else
+                EXPECT_EQ(r->distance, 0);
             EXPECT_NEAR(norm(fromk(r->axis)), 1, 1e-15);
         }
         kairos_shape_release(pt);
@@ -715,7 +762,8 @@ TEST(GjkEdges, MotionCastRodTurningByNearlyPiPastABall) {
     const double c0[4] = {-q0[0], -q0[1], -q0[2], q0[3]};
     double rel[4];
     mul(q1, c0, rel);
-    if (rel[3] < 0) for (double& x : rel) x = -x;
+    if (rel[3] < 0)
+        for (double& x : rel) x = -x;
     const double sv = std::sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]);
     const double angle = 2 * std::atan2(sv, rel[3]);
     const V axis{rel[0] / sv, rel[1] / sv, rel[2] / sv};
@@ -732,7 +780,8 @@ TEST(GjkEdges, MotionCastRodTurningByNearlyPiPastABall) {
             r.m[6] = 2 * (x * z - y * w), r.m[7] = 2 * (y * z + x * w), r.m[8] = 1 - 2 * (x * x + y * y);
         }
         const V p = apply_t(r, ball_at - rod_at);
-        const V out{std::max(std::fabs(p.x) - half.x, 0.0), std::max(std::fabs(p.y) - half.y, 0.0), std::max(std::fabs(p.z) - half.z, 0.0)};
+        const V out{std::max(std::fabs(p.x) - half.x, 0.0), std::max(std::fabs(p.y) - half.y, 0.0),
+                    std::max(std::fabs(p.z) - half.z, 0.0)};
         return norm(out) - radius;
     };
     double best = INFINITY, t_best = 0;
@@ -821,8 +870,9 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
                     for (double gr : gaps) {
                         const double g = gr * size;
                         const Posed b = place_b(pa, kinds[j], rb, n, g);
-                        const std::string what = kinds[i].name + "/" + kinds[j].name + " scale " + std::to_string(scale) + " variant " +
-                                                 std::to_string(variant) + " gap " + std::to_string(gr) + " seed " + std::to_string(seed);
+                        const std::string what = kinds[i].name + "/" + kinds[j].name + " scale " +
+                                                 std::to_string(scale) + " variant " + std::to_string(variant) +
+                                                 " gap " + std::to_string(gr) + " seed " + std::to_string(seed);
                         const std::string kinds_ab = kinds[i].name + "/" + kinds[j].name;
                         const V contact_b = pa + g * n;
                         check_pair(a, b, n, g, size, deep, &contact_b, kinds_ab, what + " (a, b)", t);
@@ -832,8 +882,8 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
             }
         }
     }
-    std::printf("[sweep] %d queries: %d separated, %d intersecting; worst |distance - gap| / size %.3g\n", t.cases, t.separated,
-                t.intersecting, t.worst_rel);
+    std::printf("[sweep] %d queries: %d separated, %d intersecting; worst |distance - gap| / size %.3g\n", t.cases,
+                t.separated, t.intersecting, t.worst_rel);
     int total = 0;
     for (const auto& [key, count] : t.failures) {
         std::printf("  FAIL %-40s %4d  first: %s\n", key.c_str(), count, t.first[key].c_str());

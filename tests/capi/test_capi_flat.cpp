@@ -44,7 +44,8 @@ double segment_distance(V p, V a, V b) {
 // nearest side.
 double triangle_distance(V p, V a, V b, V cc) {
     const V n = cross(b - a, cc - a);
-    const bool inside = dot(cross(b - a, p - a), n) >= 0 && dot(cross(cc - b, p - b), n) >= 0 && dot(cross(a - cc, p - cc), n) >= 0;
+    const bool inside =
+        dot(cross(b - a, p - a), n) >= 0 && dot(cross(cc - b, p - b), n) >= 0 && dot(cross(a - cc, p - cc), n) >= 0;
     if (inside) return std::fabs(dot(p - a, n)) / norm(n);
     return std::min({segment_distance(p, a, b), segment_distance(p, b, cc), segment_distance(p, cc, a)});
 }
@@ -98,7 +99,8 @@ TEST(FlatShapes, PointAndSphereToTriangleDistanceMatchesTheClosedForm) {
         const double expected = triangle_distance(p - offset, a, b, cc);
         const V n = cross(b - a, cc - a);
         const V rel = p - offset;
-        inside_region += dot(cross(b - a, rel - a), n) >= 0 && dot(cross(cc - b, rel - b), n) >= 0 && dot(cross(a - cc, rel - cc), n) >= 0;
+        inside_region += dot(cross(b - a, rel - a), n) >= 0 && dot(cross(cc - b, rel - b), n) >= 0 &&
+                         dot(cross(a - cc, rel - cc), n) >= 0;
         for (int order = 0; order < 2; ++order) {
             const bool sphere = trial % 2 == 1;
             const kairos_shape* other = sphere ? ball.s : point.s;
@@ -144,8 +146,9 @@ TEST(FlatShapes, RayAgainstTriangleMatchesMollerTrumbore) {
         if (std::fabs(dot(d, n)) > 1e-9 * norm(d) * norm(n)) {
             const double s = dot(a - o, n) / dot(d, n);
             const V x = o + s * d;
-            near_edge = std::min({segment_distance(x, a, b), segment_distance(x, b, cc), segment_distance(x, cc, a)}) < 1e-9 ||
-                        std::fabs(s - 1) < 1e-9;
+            near_edge =
+                std::min({segment_distance(x, a, b), segment_distance(x, b, cc), segment_distance(x, cc, a)}) < 1e-9 ||
+                std::fabs(s - 1) < 1e-9;
         } else {
             near_edge = true;
         }
@@ -228,7 +231,8 @@ TEST(FlatShapes, TriangleFloorInAWorldAndASpinningRod) {
     ASSERT_EQ(kairos_shape_triangle({-5, -5, 0}, {5, -5, 0}, {0, 5, 0}, &tri.s), KAIROS_OK);
     ASSERT_EQ(kairos_shape_sphere(0.5, &ball.s), KAIROS_OK);
     ASSERT_EQ(kairos_shape_segment(1.0, &rod.s), KAIROS_OK);
-    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE}) {
+    for (int32_t bp :
+         {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE}) {
         SCOPED_TRACE(bp);
         kairos_world_settings s;
         kairos_world_settings_init(&s);
@@ -256,7 +260,8 @@ TEST(FlatShapes, TriangleFloorInAWorldAndASpinningRod) {
     // The rod's centre sits 0.5 above the triangle's plane; a quarter turn about x brings its
     // lower end down through it at 30 degrees (sin 30 = 0.5): t = 1/3 of the turn.
     // The rod starts lying along y (a quarter turn about x) and ends upright.
-    const kairos_motion rod_motion{{{0, 0, 0.5}, {std::sin(M_PI / 4), 0, 0, std::cos(M_PI / 4)}}, {{0, 0, 0.5}, {0, 0, 0, 1}}};
+    const kairos_motion rod_motion{{{0, 0, 0.5}, {std::sin(M_PI / 4), 0, 0, std::cos(M_PI / 4)}},
+                                   {{0, 0, 0.5}, {0, 0, 0, 1}}};
     const kairos_motion still{{{0, 0, 0}, {0, 0, 0, 1}}, {{0, 0, 0}, {0, 0, 0, 1}}};
     const kairos_query_settings q = tight();
     kairos_cast_result r;

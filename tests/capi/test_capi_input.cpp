@@ -19,8 +19,9 @@ const double kInf = std::numeric_limits<double>::infinity();
 // Checks status and that the thread's message names `argument`.
 ::testing::AssertionResult Rejected(int32_t status, int32_t expected, const char* argument) {
     if (status != expected)
-        return ::testing::AssertionFailure() << "status " << kairos_status_name(status) << ", expected "
-                                             << kairos_status_name(expected) << " (message: " << kairos_last_error() << ")";
+        return ::testing::AssertionFailure()
+               << "status " << kairos_status_name(status) << ", expected " << kairos_status_name(expected)
+               << " (message: " << kairos_last_error() << ")";
     const std::string message = kairos_last_error();
     if (message.find(argument) == std::string::npos)
         return ::testing::AssertionFailure() << "message '" << message << "' does not name '" << argument << "'";
@@ -43,7 +44,10 @@ kairos_pose identity() { return {{0, 0, 0}, {0, 0, 0, 1}}; }
 TEST(Library, VersionMatchesHeader) { EXPECT_EQ(kairos_version(), static_cast<uint32_t>(KAIROS_VERSION_NUMBER)); }
 
 TEST(Library, StatusNamesForEveryValue) {
-    const struct { int32_t v; const char* name; } known[] = {
+    const struct {
+        int32_t v;
+        const char* name;
+    } known[] = {
         {KAIROS_OK, "KAIROS_OK"},
         {KAIROS_ERROR_NULL_ARGUMENT, "KAIROS_ERROR_NULL_ARGUMENT"},
         {KAIROS_ERROR_INVALID_ARGUMENT, "KAIROS_ERROR_INVALID_ARGUMENT"},
@@ -67,7 +71,8 @@ TEST(Library, StatusNamesForEveryValue) {
 TEST(Library, MessageStartsWithTheFunctionName) {
     kairos_shape* s = kSentinel;
     ASSERT_EQ(kairos_shape_cylinder(1, -3, &s), KAIROS_ERROR_INVALID_ARGUMENT);
-    EXPECT_EQ(std::string(kairos_last_error()).rfind("kairos_shape_cylinder: half_height", 0), 0u) << kairos_last_error();
+    EXPECT_EQ(std::string(kairos_last_error()).rfind("kairos_shape_cylinder: half_height", 0), 0u)
+        << kairos_last_error();
     ASSERT_EQ(kairos_world_remove(nullptr, 1), KAIROS_ERROR_NULL_ARGUMENT);
     EXPECT_EQ(std::string(kairos_last_error()).rfind("kairos_world_remove: w", 0), 0u) << kairos_last_error();
     const kairos_api* api = nullptr;
@@ -220,13 +225,16 @@ TEST_F(Shapes, Composites) {
     EXPECT_TRUE(Rejected(kairos_shape_transformed(nullptr, m, {0, 0, 0}, &s), KAIROS_ERROR_NULL_ARGUMENT, "s"));
     EXPECT_TRUE(Rejected(kairos_shape_transformed(box, nullptr, {0, 0, 0}, &s), KAIROS_ERROR_NULL_ARGUMENT, "linear"));
     EXPECT_TRUE(Rejected(kairos_shape_transformed(box, m, {0, 0, 0}, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
-    EXPECT_TRUE(Rejected(kairos_shape_transformed(box, m, {0, kInf, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "translation.y"));
+    EXPECT_TRUE(
+        Rejected(kairos_shape_transformed(box, m, {0, kInf, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "translation.y"));
     m[4] = kNaN;
     EXPECT_TRUE(Rejected(kairos_shape_transformed(box, m, {0, 0, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "linear[4]"));
     const double singular[9] = {1, 2, 3, 2, 4, 6, 0, 0, 1};
-    EXPECT_TRUE(Rejected(kairos_shape_transformed(box, singular, {0, 0, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "singular"));
+    EXPECT_TRUE(
+        Rejected(kairos_shape_transformed(box, singular, {0, 0, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "singular"));
     const double zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    EXPECT_TRUE(Rejected(kairos_shape_transformed(box, zero, {0, 0, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "singular"));
+    EXPECT_TRUE(
+        Rejected(kairos_shape_transformed(box, zero, {0, 0, 0}, &s), KAIROS_ERROR_INVALID_ARGUMENT, "singular"));
     EXPECT_EQ(s, kSentinel);
     // A tiny but well-conditioned matrix (uniform scale 1e-9, mirrored) is fine.
     const double tiny[9] = {-1e-9, 0, 0, 0, 1e-9, 0, 0, 0, 1e-9};
@@ -290,23 +298,30 @@ TEST_F(Shapes, QueriesCheckEveryArgument) {
     const kairos_distance_result dr0 = dr;
     EXPECT_TRUE(Rejected(kairos_distance(nullptr, &p, box, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT, "a"));
     EXPECT_TRUE(Rejected(kairos_distance(box, &p, nullptr, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT, "b"));
-    EXPECT_TRUE(Rejected(kairos_distance(box, &bad, box, &p, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_a.orientation"));
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &bad, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_b.orientation"));
+    EXPECT_TRUE(
+        Rejected(kairos_distance(box, &bad, box, &p, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_a.orientation"));
+    EXPECT_TRUE(
+        Rejected(kairos_distance(box, &p, box, &bad, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_b.orientation"));
     EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
     kairos_query_settings bs = qs;
     bs.struct_size = 0;
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
+    EXPECT_TRUE(
+        Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
     bs = qs;
     bs.struct_size = sizeof qs + 8;
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
+    EXPECT_TRUE(
+        Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
     for (double tol : {0.0, -1e-3, 1.0, kNaN, kInf}) {
         bs = qs;
         bs.tolerance = tol;
-        EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "settings->tolerance")) << tol;
+        EXPECT_TRUE(
+            Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "settings->tolerance"))
+            << tol;
     }
     bs = qs;
     bs.max_iterations = 0;
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "settings->max_iterations"));
+    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT,
+                         "settings->max_iterations"));
     EXPECT_EQ(std::memcmp(&dr, &dr0, sizeof dr), 0);
 
     int32_t hit = 42;
@@ -321,27 +336,41 @@ TEST_F(Shapes, QueriesCheckEveryArgument) {
     kairos_cast_result cr;
     std::memset(&cr, 0xcd, sizeof cr);
     const kairos_cast_result cr0 = cr;
-    EXPECT_TRUE(Rejected(kairos_ray_cast(nullptr, &p, {0, 0, 0}, {1, 0, 0}, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "s"));
-    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &bad, {0, 0, 0}, {1, 0, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "pose"));
-    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {kNaN, 0, 0}, {1, 0, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "origin.x"));
-    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {0, 0, 0}, {1, 0, kInf}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "translation.z"));
-    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {0, 0, 0}, {1, 0, 0}, &bs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "settings->max_iterations"));
-    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {0, 0, 0}, {1, 0, 0}, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+    EXPECT_TRUE(
+        Rejected(kairos_ray_cast(nullptr, &p, {0, 0, 0}, {1, 0, 0}, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "s"));
+    EXPECT_TRUE(
+        Rejected(kairos_ray_cast(box, &bad, {0, 0, 0}, {1, 0, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "pose"));
+    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {kNaN, 0, 0}, {1, 0, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT,
+                         "origin.x"));
+    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {0, 0, 0}, {1, 0, kInf}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT,
+                         "translation.z"));
+    EXPECT_TRUE(Rejected(kairos_ray_cast(box, &p, {0, 0, 0}, {1, 0, 0}, &bs, &cr), KAIROS_ERROR_INVALID_ARGUMENT,
+                         "settings->max_iterations"));
+    EXPECT_TRUE(
+        Rejected(kairos_ray_cast(box, &p, {0, 0, 0}, {1, 0, 0}, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
 
-    EXPECT_TRUE(Rejected(kairos_shape_cast(nullptr, &p, {1, 0, 0}, box, &p, {0, 0, 0}, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "a"));
-    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, nullptr, &p, {0, 0, 0}, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "b"));
-    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {kNaN, 0, 0}, box, &p, {0, 0, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "translation_a.x"));
-    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, box, &p, {0, -kInf, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "translation_b.y"));
-    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, box, &bad, {0, 0, 0}, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_b"));
-    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, box, &p, {0, 0, 0}, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+    EXPECT_TRUE(Rejected(kairos_shape_cast(nullptr, &p, {1, 0, 0}, box, &p, {0, 0, 0}, &qs, &cr),
+                         KAIROS_ERROR_NULL_ARGUMENT, "a"));
+    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, nullptr, &p, {0, 0, 0}, &qs, &cr),
+                         KAIROS_ERROR_NULL_ARGUMENT, "b"));
+    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {kNaN, 0, 0}, box, &p, {0, 0, 0}, &qs, &cr),
+                         KAIROS_ERROR_INVALID_ARGUMENT, "translation_a.x"));
+    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, box, &p, {0, -kInf, 0}, &qs, &cr),
+                         KAIROS_ERROR_INVALID_ARGUMENT, "translation_b.y"));
+    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, box, &bad, {0, 0, 0}, &qs, &cr),
+                         KAIROS_ERROR_INVALID_ARGUMENT, "pose_b"));
+    EXPECT_TRUE(Rejected(kairos_shape_cast(box, &p, {1, 0, 0}, box, &p, {0, 0, 0}, &qs, nullptr),
+                         KAIROS_ERROR_NULL_ARGUMENT, "out"));
 
     kairos_motion m{p, p};
     kairos_motion mbad{p, bad};
     EXPECT_TRUE(Rejected(kairos_motion_cast(nullptr, &m, box, &m, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "a"));
     EXPECT_TRUE(Rejected(kairos_motion_cast(box, nullptr, box, &m, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "motion_a"));
     EXPECT_TRUE(Rejected(kairos_motion_cast(box, &m, box, nullptr, &qs, &cr), KAIROS_ERROR_NULL_ARGUMENT, "motion_b"));
-    EXPECT_TRUE(Rejected(kairos_motion_cast(box, &mbad, box, &m, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "motion_a.end"));
-    EXPECT_TRUE(Rejected(kairos_motion_cast(box, &m, box, &mbad, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "motion_b.end"));
+    EXPECT_TRUE(
+        Rejected(kairos_motion_cast(box, &mbad, box, &m, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "motion_a.end"));
+    EXPECT_TRUE(
+        Rejected(kairos_motion_cast(box, &m, box, &mbad, &qs, &cr), KAIROS_ERROR_INVALID_ARGUMENT, "motion_b.end"));
     EXPECT_TRUE(Rejected(kairos_motion_cast(box, &m, box, &m, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
     EXPECT_EQ(std::memcmp(&cr, &cr0, sizeof cr), 0);
 }
@@ -481,4 +510,3 @@ TEST(WorldInput, StepStats) {
     EXPECT_EQ(full.broad_phase_pairs, 0u);
     kairos_world_destroy(w);
 }
-

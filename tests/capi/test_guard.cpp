@@ -31,8 +31,9 @@ TEST(Guard, MapsEveryExceptionToAStatus) {
 
 TEST(Guard, LongMessagesAreTruncatedNotOverflowed) {
     const std::string huge(5000, 'x');
-    EXPECT_EQ(guarded("f_long", [&] { kairos::capi::fail(KAIROS_ERROR_INVALID_ARGUMENT, "f_long", "%s", huge.c_str()); }),
-              KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(
+        guarded("f_long", [&] { kairos::capi::fail(KAIROS_ERROR_INVALID_ARGUMENT, "f_long", "%s", huge.c_str()); }),
+        KAIROS_ERROR_INVALID_ARGUMENT);
     const std::string m = kairos_last_error();
     EXPECT_EQ(m.rfind("f_long: xxx", 0), 0u);
     EXPECT_LT(m.size(), 1024u);

@@ -58,7 +58,8 @@ std::vector<unsigned char> query_batch(const SharedShapes& shapes) {
             keep(&d.distance, sizeof d.distance);
             keep(&d.point_a, sizeof d.point_a);
             kairos_cast_result r;
-            EXPECT_EQ(kairos_shape_cast(shapes.all[i], &pa, {2, 0, 0}, shapes.all[j], &pb, {0, 0, 0}, nullptr, &r), KAIROS_OK);
+            EXPECT_EQ(kairos_shape_cast(shapes.all[i], &pa, {2, 0, 0}, shapes.all[j], &pb, {0, 0, 0}, nullptr, &r),
+                      KAIROS_OK);
             keep(&r.toi, sizeof r.toi);
             keep(&r.normal, sizeof r.normal);
             const kairos_motion ma{pa, {{2, 0, 0}, {0, 0, std::sqrt(0.5), std::sqrt(0.5)}}}, mb{pb, pb};
@@ -79,14 +80,17 @@ std::vector<unsigned char> world_run(const SharedShapes& shapes, int32_t broad_p
     for (int i = 0; i < 60; ++i) {
         kairos_pose p = at(1.1 * (i % 10), 1.1 * (i / 10), 0);
         kairos_object_id id = 0;
-        EXPECT_EQ(kairos_world_add(w, shapes.all[static_cast<size_t>(i) % shapes.all.size()], &p, static_cast<uint64_t>(i), &id), KAIROS_OK);
+        EXPECT_EQ(kairos_world_add(w, shapes.all[static_cast<size_t>(i) % shapes.all.size()], &p,
+                                   static_cast<uint64_t>(i), &id),
+                  KAIROS_OK);
         ids.push_back(id);
     }
     std::vector<unsigned char> bytes;
     for (int step = 1; step <= 4; ++step) {
         for (size_t i = 0; i < ids.size(); i += 3) {
             const double k = static_cast<double>(i);
-            kairos_pose p = at(1.1 * static_cast<double>(i % 10) + 0.4 * step * std::sin(k), 1.1 * static_cast<double>(i / 10), 0.3 * std::cos(k));
+            kairos_pose p = at(1.1 * static_cast<double>(i % 10) + 0.4 * step * std::sin(k),
+                               1.1 * static_cast<double>(i / 10), 0.3 * std::cos(k));
             EXPECT_EQ(kairos_world_move(w, ids[i], &p), KAIROS_OK);
         }
         EXPECT_EQ(kairos_world_step(w), KAIROS_OK);
@@ -113,7 +117,9 @@ TEST(Threads, SharedShapesQueriedRetainedAndReleasedAtOnce) {
                 for (kairos_shape* s : shapes.all) kairos_shape_retain(s);
                 kairos_shape* sum = nullptr;
                 kairos_shape* both = nullptr;
-                if (kairos_shape_minkowski_sum(shapes.all[static_cast<size_t>(t) % 5], shapes.all[2], &sum) != KAIROS_OK) ++mismatches;
+                if (kairos_shape_minkowski_sum(shapes.all[static_cast<size_t>(t) % 5], shapes.all[2], &sum) !=
+                    KAIROS_OK)
+                    ++mismatches;
                 if (kairos_shape_hull(shapes.all[3], shapes.all[1], &both) != KAIROS_OK) ++mismatches;
                 if (query_batch(shapes) != reference) ++mismatches;
                 kairos_shape_release(sum);
@@ -128,7 +134,8 @@ TEST(Threads, SharedShapesQueriedRetainedAndReleasedAtOnce) {
 
 TEST(Threads, OneWorldPerThreadOverSharedShapes) {
     SharedShapes shapes;
-    const int32_t phases[3] = {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE};
+    const int32_t phases[3] = {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
+                               KAIROS_BROAD_PHASE_BRUTE_FORCE};
     std::vector<std::vector<unsigned char>> reference;
     for (int32_t bp : phases) reference.push_back(world_run(shapes, bp));
     ASSERT_FALSE(reference[0].empty());

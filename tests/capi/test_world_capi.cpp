@@ -36,8 +36,8 @@ struct WorldFixture : ::testing::Test {
 };
 
 TEST_F(WorldFixture, BulletThroughAWallInEveryBroadPhase) {
-    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE,
-                       KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
+                       KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
         SCOPED_TRACE(bp);
         kairos_world_settings s;
         kairos_world_settings_init(&s);
@@ -137,8 +137,9 @@ TEST_F(WorldFixture, SameSceneTwiceIsBitIdentical) {
         for (int s = 1; s <= 3; ++s) {
             for (size_t i = 0; i < ids.size(); i += 2) {
                 const double k = static_cast<double>(i);
-                kairos_pose p = at(1.7 * static_cast<double>(i % 20) + 0.3 * s * std::sin(k),
-                                   1.7 * static_cast<double>(i / 20) + 0.3 * s * std::cos(k), 0.1 * static_cast<double>(i % 3));
+                kairos_pose p =
+                    at(1.7 * static_cast<double>(i % 20) + 0.3 * s * std::sin(k),
+                       1.7 * static_cast<double>(i / 20) + 0.3 * s * std::cos(k), 0.1 * static_cast<double>(i % 3));
                 ASSERT_EQ(kairos_world_move(w, ids[i], &p), KAIROS_OK);
             }
             ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
@@ -179,8 +180,8 @@ TEST_F(WorldFixture, MoveBackToTheLastSweptBoxIsSafeAndFindsThePair) {
                             {0.46882472323217533, 0.5836181428458358, 0.46882472323217533, 0.46882472323217533}};
     const kairos_pose second{{17.023437857633326, 17.421881437399861, 17},
                              {0.1435354361485609, -3.7194982158217247e-05, -0.8125243852462587, 0.56497938065593589}};
-    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP, KAIROS_BROAD_PHASE_BRUTE_FORCE,
-                       KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
+                       KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
         SCOPED_TRACE(bp);
         kairos_world_settings s;
         kairos_world_settings_init(&s);
@@ -219,13 +220,15 @@ TEST_F(WorldFixture, ShuttlingObjectsMatchBruteForce) {
     std::vector<kairos_pose> from(kObjects), to(kObjects);
     for (int i = 0; i < kObjects; ++i) {
         from[i] = at(uniform(-6, 6), uniform(-6, 6), uniform(-6, 6));
-        to[i] = at(from[i].position.x + uniform(-3, 3), from[i].position.y + uniform(-3, 3), from[i].position.z + uniform(-3, 3));
+        to[i] = at(from[i].position.x + uniform(-3, 3), from[i].position.y + uniform(-3, 3),
+                   from[i].position.z + uniform(-3, 3));
         const double h = std::sqrt(0.5);
         if (i % 3 == 0) to[i].orientation = {0, 0, h, h};
     }
     std::vector<kairos_world*> worlds;
     std::vector<std::vector<kairos_object_id>> ids(3);
-    for (int32_t bp : {KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+    for (int32_t bp :
+         {KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
         kairos_world_settings s;
         kairos_world_settings_init(&s);
         s.broad_phase = bp;

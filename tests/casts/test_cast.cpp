@@ -4,14 +4,14 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <vector>
 
-#include "casts/cast.hpp"
 #include "cast_test_support.hpp"
+#include "casts/cast.hpp"
 
 using namespace kairos;
 using namespace cast_test;
@@ -45,17 +45,20 @@ struct Stats {
     void print(const char* name) const {
         double it = 0;
         for (double x : iterations) it += x;
-        std::printf("[%-18s] casts %5d hits %5d (truth %5d) misses %d false %d late %d grazing %d | toi err med %.2g max %.2g | "
-                    "normal gap med %.2g max %.2g angle max %.2g | point med %.2g max %.2g | iterations %.2f\n",
-                    name, casts, hits, truth_hits, misses, false_hits, late, grazing, median(toi_err), maximum(toi_err),
-                    median(normal_gap), maximum(normal_gap), maximum(normal_angle), median(point_err), maximum(point_err),
-                    casts ? it / casts : 0);
+        std::printf(
+            "[%-18s] casts %5d hits %5d (truth %5d) misses %d false %d late %d grazing %d | toi err med %.2g max %.2g "
+            "| "
+            "normal gap med %.2g max %.2g angle max %.2g | point med %.2g max %.2g | iterations %.2f\n",
+            name, casts, hits, truth_hits, misses, false_hits, late, grazing, median(toi_err), maximum(toi_err),
+            median(normal_gap), maximum(normal_gap), maximum(normal_angle), median(point_err), maximum(point_err),
+            casts ? it / casts : 0);
     }
 };
 
 // Runs `count` random casts of kind ka against kind kb and checks each against the oracle.
 Stats run_pair(uint64_t seed, Kind ka, Kind kb, int count, double tolerance, double scale = 1, Vec3 base = {},
-               double motion_scale = 1, cast_detail::ClipPolicy policy = cast_detail::kDefaultPolicy, bool check = true) {
+               double motion_scale = 1, cast_detail::ClipPolicy policy = cast_detail::kDefaultPolicy,
+               bool check = true) {
     std::mt19937_64 rng(seed);
     Stats st;
     // Allowances: a hit stops within tolerance * size of M; toi, normal and point errors scale with it
@@ -72,7 +75,8 @@ Stats run_pair(uint64_t seed, Kind ka, Kind kb, int count, double tolerance, dou
         const Cast c = random_cast(rng, a, b, base, motion_scale);
         place(a.body, c.pa);
         place(b.body, c.pb);
-        const CastResult r = cast_detail::shape_cast(*a.shape, c.pa, c.ta, *b.shape, c.pb, c.tb, tolerance, kMaxIt, policy);
+        const CastResult r =
+            cast_detail::shape_cast(*a.shape, c.pa, c.ta, *b.shape, c.pb, c.tb, tolerance, kMaxIt, policy);
         const cast_oracle::Truth t = cast_oracle::toi(a.body, b.body, p3(c.ta), p3(c.tb));
         const double rlen = length(c.tb - c.ta);
         const double size = static_cast<double>(cast_oracle::size_of(a.body, b.body));
@@ -82,10 +86,11 @@ Stats run_pair(uint64_t seed, Kind ka, Kind kb, int count, double tolerance, dou
         const bool bad = v.miss || v.false_hit || v.late || !std::isfinite(r.toi) || r.toi < 0 || r.toi > 1 ||
                          (r.hit && (!is_finite(r.point) || std::fabs(length(r.normal) - 1) > 1e-12));
         if (check) {
-            EXPECT_FALSE(bad) << kind_name(ka) << "/" << kind_name(kb) << " seed " << seed << " case " << i << ": hit " << r.hit
-                          << " toi " << r.toi << " truth hit " << t.hit << " toi " << static_cast<double>(t.toi) << " grazing "
-                          << t.grazing << " point err " << v.point_error << " termination " << int(r.termination)
-                          << " iterations " << r.iterations;
+            EXPECT_FALSE(bad) << kind_name(ka) << "/" << kind_name(kb) << " seed " << seed << " case " << i << ": hit "
+                              << r.hit << " toi " << r.toi << " truth hit " << t.hit << " toi "
+                              << static_cast<double>(t.toi) << " grazing " << t.grazing << " point err "
+                              << v.point_error << " termination " << int(r.termination) << " iterations "
+                              << r.iterations;
         }
     }
     return st;
@@ -131,7 +136,8 @@ TEST(CastRandom, FarFromOriginAndScales) {
         EXPECT_EQ(st.misses + st.false_hits + st.late, 0);
     }
     for (const double scale : {1e-4, 1e4}) {
-        for (auto [ka, kb] : {std::pair{Kind::Box, Kind::Box}, {Kind::Sphere, Kind::Hull}, {Kind::Cylinder, Kind::Capsule}}) {
+        for (auto [ka, kb] :
+             {std::pair{Kind::Box, Kind::Box}, {Kind::Sphere, Kind::Hull}, {Kind::Cylinder, Kind::Capsule}}) {
             const Stats st = run_pair(78, ka, kb, 40, kTol, scale);
             st.print(scale < 1 ? "tiny" : "huge");
             EXPECT_EQ(st.misses + st.false_hits + st.late, 0);
@@ -145,7 +151,8 @@ TEST(CastRandom, TolerancesTradeAccuracyForIterations) {
     double last_iterations = 0;
     for (const double tol : {1e-1, 1e-3, 1e-5, 1e-7, 1e-10}) {
         Stats all;
-        for (auto [ka, kb] : {std::pair{Kind::Box, Kind::Box}, {Kind::Hull, Kind::Hull}, {Kind::Cylinder, Kind::Cone}}) {
+        for (auto [ka, kb] :
+             {std::pair{Kind::Box, Kind::Box}, {Kind::Hull, Kind::Hull}, {Kind::Cylinder, Kind::Cone}}) {
             const Stats st = run_pair(90, ka, kb, 40, tol);
             all.misses += st.misses + st.false_hits + st.late;
             for (double e : st.iterations) all.iterations.push_back(e);
@@ -166,7 +173,9 @@ TEST(CastRandom, BothClipPoliciesAreCorrect) {
     double it[2] = {0, 0};
     int p = 0;
     for (auto policy : {cast_detail::ClipPolicy::Keep, cast_detail::ClipPolicy::Restart}) {
-        for (auto [ka, kb] : {std::pair{Kind::Box, Kind::Box}, {Kind::Hull, Kind::Hull}, {Kind::Cylinder, Kind::Cone},
+        for (auto [ka, kb] : {std::pair{Kind::Box, Kind::Box},
+                              {Kind::Hull, Kind::Hull},
+                              {Kind::Cylinder, Kind::Cone},
                               {Kind::Capsule, Kind::Hull}}) {
             const Stats st = run_pair(91, ka, kb, 40, kTol, 1, {}, 1, policy, policy == cast_detail::ClipPolicy::Keep);
             for (double e : st.iterations) it[p] += e;
@@ -197,8 +206,11 @@ TEST(RayCast, RandomRaysOnEveryKind) {
             Solid s = random_solid(rng, k);
             const Transform pose = make_transform(0.5 * random_unit(rng), random_quat(rng));
             place(s.body, pose);
-            const Vec3 origin = pose.translation + (s.radius * (1.5 + 2 * std::uniform_real_distribution<double>(0, 1)(rng))) * random_unit(rng);
-            const Vec3 aim = pose.translation + s.radius * std::uniform_real_distribution<double>(0, 1.6)(rng) * random_unit(rng);
+            const Vec3 origin =
+                pose.translation +
+                (s.radius * (1.5 + 2 * std::uniform_real_distribution<double>(0, 1)(rng))) * random_unit(rng);
+            const Vec3 aim =
+                pose.translation + s.radius * std::uniform_real_distribution<double>(0, 1.6)(rng) * random_unit(rng);
             const Vec3 translation = 1.6 * (aim - origin);
             const CastResult r = ray_cast(*s.shape, pose, origin, translation, kTol, kMaxIt);
             Body point = cast_oracle::make_body(Kind::Point);
@@ -207,7 +219,8 @@ TEST(RayCast, RandomRaysOnEveryKind) {
             const double size = static_cast<double>(cast_oracle::size_of(s.body, point));
             const bool curved = k == Kind::Cylinder || k == Kind::Cone;
             const double allow = std::max(1e3 * kTol, curved ? 1e-7 : 0.0);  // see run_pair
-            const Verdict v = judge(s.body, point, {}, p3(translation), t, r, allow * size / length(translation), allow);
+            const Verdict v =
+                judge(s.body, point, {}, p3(translation), t, r, allow * size / length(translation), allow);
             ++n;
             hits += t.hit;
             EXPECT_FALSE(v.miss || v.false_hit || v.late)
@@ -388,7 +401,8 @@ TEST(ShapeCast, TerminationRules) {
     r = shape_cast(*cyl, at({}), {}, *cyl, at({5, 0.2, 0.1}, Quat{0.3, 0.1, 0.2, 0.927}), {-10, 0, 0}, kTol, 1);
     EXPECT_EQ(r.termination, Termination::MaxIterations);
     EXPECT_EQ(r.iterations, 1u);
-    const CastResult full = shape_cast(*cyl, at({}), {}, *cyl, at({5, 0.2, 0.1}, Quat{0.3, 0.1, 0.2, 0.927}), {-10, 0, 0}, kTol, kMaxIt);
+    const CastResult full =
+        shape_cast(*cyl, at({}), {}, *cyl, at({5, 0.2, 0.1}, Quat{0.3, 0.1, 0.2, 0.927}), {-10, 0, 0}, kTol, kMaxIt);
     EXPECT_LE(r.toi, full.toi);
 }
 
@@ -417,7 +431,8 @@ TEST(CastLong, DISABLED_MillionCastsAgainstOracle) {
         Stats st;
         {
             // Failures are counted and the first few printed with their seeds, not all reported.
-            testing::ScopedFakeTestPartResultReporter quiet(testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &sink);
+            testing::ScopedFakeTestPartResultReporter quiet(
+                testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &sink);
             st = run_pair(seed, ka, kb, n, kTol);
         }
         for (int i = 0; i < sink.size(); ++i)
@@ -436,13 +451,14 @@ TEST(CastLong, DISABLED_MillionCastsAgainstOracle) {
         done += n;
         ++seed;
         if (done % 100000 == 0) {
-            std::printf("%ld casts: misses %d false hits %d late %d failures %d\n", done, all.misses, all.false_hits, all.late, failures);
+            std::printf("%ld casts: misses %d false hits %d late %d failures %d\n", done, all.misses, all.false_hits,
+                        all.late, failures);
             std::fflush(stdout);
         }
     }
     all.print("long run");
-    std::printf("casts %d, oracle hits %d, grazing %d, misses %d, false hits %d, late %d, other failures %d\n", all.casts,
-                all.truth_hits, all.grazing, all.misses, all.false_hits, all.late, failures);
+    std::printf("casts %d, oracle hits %d, grazing %d, misses %d, false hits %d, late %d, other failures %d\n",
+                all.casts, all.truth_hits, all.grazing, all.misses, all.false_hits, all.late, failures);
     EXPECT_EQ(all.misses, 0);
     EXPECT_EQ(all.false_hits, 0);
     EXPECT_EQ(all.late, 0);
@@ -489,8 +505,9 @@ TEST(CastCurved, RaysOntoACylinderAgainstClosedForm) {
         EXPECT_LT(gaps.back(), 1e-8) << "seed " << seed << " ray " << i << " toi " << c.toi << " truth " << t0;
     }
     std::sort(gaps.begin(), gaps.end());
-    std::printf("rays onto a cylinder: %d rays, %d hits; distance of the ray point at toi from the surface: median %.3g "
-                "p99 %.3g max %.3g\n",
-                rays, hits, gaps[gaps.size() / 2], gaps[gaps.size() * 99 / 100], gaps.back());
+    std::printf(
+        "rays onto a cylinder: %d rays, %d hits; distance of the ray point at toi from the surface: median %.3g "
+        "p99 %.3g max %.3g\n",
+        rays, hits, gaps[gaps.size() / 2], gaps[gaps.size() * 99 / 100], gaps.back());
     EXPECT_GT(rays, 10000);  // most random rays reach the solid: the set exercises the hit path
 }

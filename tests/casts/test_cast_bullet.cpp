@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <random>
 
-#include "casts/cast.hpp"
 #include "cast_peer_bullet.hpp"
 #include "cast_test_support.hpp"
+#include "casts/cast.hpp"
 
 using namespace kairos;
 using namespace cast_test;
@@ -31,18 +31,20 @@ struct Tally {
         }
     }
     void print(const char* who, const char* pair) const {
-        std::printf("[%-8s %-16s] casts %d (truth hits %d) misses %d false hits %d late %d | toi err median %.2g max %.2g | "
-                    "normal angle median %.2g max %.2g\n",
-                    who, pair, casts, truth_hits, misses, false_hits, late, median(toi_err), maximum(toi_err), median(angle),
-                    maximum(angle));
+        std::printf(
+            "[%-8s %-16s] casts %d (truth hits %d) misses %d false hits %d late %d | toi err median %.2g max %.2g | "
+            "normal angle median %.2g max %.2g\n",
+            who, pair, casts, truth_hits, misses, false_hits, late, median(toi_err), maximum(toi_err), median(angle),
+            maximum(angle));
     }
 };
 
 }  // namespace
 
 TEST(CastPeerBullet, SubsimplexCastAgainstOracle) {
-    const std::pair<Kind, Kind> pairs[] = {{Kind::Box, Kind::Box},       {Kind::Hull, Kind::Hull},  {Kind::Cylinder, Kind::Cone},
-                                           {Kind::Capsule, Kind::Hull},  {Kind::Sphere, Kind::Box}, {Kind::Box, Kind::Cylinder}};
+    const std::pair<Kind, Kind> pairs[] = {{Kind::Box, Kind::Box},       {Kind::Hull, Kind::Hull},
+                                           {Kind::Cylinder, Kind::Cone}, {Kind::Capsule, Kind::Hull},
+                                           {Kind::Sphere, Kind::Box},    {Kind::Box, Kind::Cylinder}};
     uint64_t seed = 7100;
     for (auto [ka, kb] : pairs) {
         std::mt19937_64 rng(++seed);
@@ -63,16 +65,19 @@ TEST(CastPeerBullet, SubsimplexCastAgainstOracle) {
             const CastResult k = shape_cast(*a.shape, c.pa, c.ta, *b.shape, c.pb, c.tb, 1e-10, 256);
             const Verdict kv = judge(a.body, b.body, p3(c.ta), p3(c.tb), t, k, toi_allow, allow);
             kt.add(kv, t);
-            EXPECT_FALSE(kv.miss || kv.false_hit || kv.late) << kind_name(ka) << "/" << kind_name(kb) << " seed " << seed << " case " << i;
+            EXPECT_FALSE(kv.miss || kv.false_hit || kv.late)
+                << kind_name(ka) << "/" << kind_name(kb) << " seed " << seed << " case " << i;
 
             const auto sa = cast_peer::bullet_shape(a.body), sb = cast_peer::bullet_shape(b.body);
             const CastResult r = cast_peer::bullet_cast(*sa, *sb, c);
-            const Verdict bv = judge(a.body, b.body, p3(c.ta), p3(c.tb), t, r, toi_allow, 1e300);  // Bullet's point: not judged
+            const Verdict bv =
+                judge(a.body, b.body, p3(c.ta), p3(c.tb), t, r, toi_allow, 1e300);  // Bullet's point: not judged
             bt.add(bv, t);
             if ((bv.miss || bv.late) && ++shown <= 3)
-                std::printf("  bullet disagrees: %s/%s seed %llu case %d: bullet hit %d toi %.17g, oracle hit %d toi %.17g\n",
-                            kind_name(ka), kind_name(kb), static_cast<unsigned long long>(seed), i, int(r.hit), r.toi, int(t.hit),
-                            static_cast<double>(t.toi));
+                std::printf(
+                    "  bullet disagrees: %s/%s seed %llu case %d: bullet hit %d toi %.17g, oracle hit %d toi %.17g\n",
+                    kind_name(ka), kind_name(kb), static_cast<unsigned long long>(seed), i, int(r.hit), r.toi,
+                    int(t.hit), static_cast<double>(t.toi));
         }
         char name[64];
         std::snprintf(name, sizeof name, "%s/%s", kind_name(ka), kind_name(kb));

@@ -15,8 +15,11 @@ using namespace kairos;
 using namespace cast_test;
 
 TEST(CastPeerFcl, ConservativeAdvancementAgainstOracle) {
-    const std::pair<Kind, Kind> pairs[] = {{Kind::Box, Kind::Box}, {Kind::Hull, Kind::Hull}, {Kind::Cylinder, Kind::Cone},
-                                           {Kind::Capsule, Kind::Hull}, {Kind::Sphere, Kind::Box}};
+    const std::pair<Kind, Kind> pairs[] = {{Kind::Box, Kind::Box},
+                                           {Kind::Hull, Kind::Hull},
+                                           {Kind::Cylinder, Kind::Cone},
+                                           {Kind::Capsule, Kind::Hull},
+                                           {Kind::Sphere, Kind::Box}};
     uint64_t seed = 7200;
     for (auto [ka, kb] : pairs) {
         std::mt19937_64 rng(++seed);
@@ -59,12 +62,15 @@ TEST(CastPeerFcl, ConservativeAdvancementAgainstOracle) {
             late += lt;
             if (t.hit && f.hit) err.push_back(std::fabs(f.toi - static_cast<double>(t.toi)));
             if ((miss || fh || lt) && ++shown <= 3)
-                std::printf("  fcl disagrees: %s/%s seed %llu case %d: fcl hit %d toi %.9g, oracle hit %d toi %.9g\n", kind_name(ka),
-                            kind_name(kb), static_cast<unsigned long long>(seed), i, f.hit, f.toi, int(t.hit),
-                            static_cast<double>(t.toi));
+                std::printf("  fcl disagrees: %s/%s seed %llu case %d: fcl hit %d toi %.9g, oracle hit %d toi %.9g\n",
+                            kind_name(ka), kind_name(kb), static_cast<unsigned long long>(seed), i, f.hit, f.toi,
+                            int(t.hit), static_cast<double>(t.toi));
         }
-        std::printf("[fcl_ca %s/%s] casts %d (truth hits %d) misses %d false hits %d late %d threw %d died %d | toi err median %.2g max %.2g\n",
-                    kind_name(ka), kind_name(kb), count, hits, misses, false_hits, late, threw, died, median(err), maximum(err));
+        std::printf(
+            "[fcl_ca %s/%s] casts %d (truth hits %d) misses %d false hits %d late %d threw %d died %d | toi err median "
+            "%.2g max %.2g\n",
+            kind_name(ka), kind_name(kb), count, hits, misses, false_hits, late, threw, died, median(err),
+            maximum(err));
         // The harness is sound: FCL answers, and agrees with the oracle on most casts.
         EXPECT_LT(died + threw, count / 10);
         EXPECT_LT(misses + false_hits + late, count / 4) << kind_name(ka) << "/" << kind_name(kb);

@@ -62,9 +62,15 @@ std::vector<kairos_vec3> hull_points(Input& in) {
                     kairos_vec3 p{rng.symmetric(), rng.symmetric(), rng.symmetric()};
                     const double side = rng.next() & 1 ? 1.0 : -1.0;
                     switch (rng.next() % 3) {
-                        case 0: p.x = side; break;
-                        case 1: p.y = side; break;
-                        default: p.z = side; break;
+                        case 0:
+                            p.x = side;
+                            break;
+                        case 1:
+                            p.y = side;
+                            break;
+                        default:
+                            p.z = side;
+                            break;
                     }
                     base[i] = p;
                 }
@@ -95,14 +101,19 @@ std::vector<kairos_vec3> hull_points(Input& in) {
     }();
     kairos_vec3 offset{0, 0, 0};
     switch (in.pick(4)) {
-        case 0: break;
-        case 1: offset = small_vec(in, 4); break;
+        case 0:
+            break;
+        case 1:
+            offset = small_vec(in, 4);
+            break;
         case 2: {
             const double far = std::pow(10.0, 3 + static_cast<int>(in.pick(13)));  // 1e3 .. 1e15
             offset = {far, -0.5 * far, 0.25 * far};
             break;
         }
-        default: offset = small_vec(in, power_of_ten(in)); break;
+        default:
+            offset = small_vec(in, power_of_ten(in));
+            break;
     }
     Model frame;
     const Placed rot = place(frame, q, {});
@@ -117,9 +128,15 @@ std::vector<kairos_vec3> hull_points(Input& in) {
         kairos_vec3& p = base[in.pick(static_cast<unsigned>(count))];
         const double v = edge_value(in);
         switch (in.pick(3)) {
-            case 0: p.x = v; break;
-            case 1: p.y = v; break;
-            default: p.z = v; break;
+            case 0:
+                p.x = v;
+                break;
+            case 1:
+                p.y = v;
+                break;
+            default:
+                p.z = v;
+                break;
         }
     }
     return base;
@@ -296,7 +313,8 @@ std::optional<Built> ShapeBuilder::convex_hull() {
     }
     const kairos_vec3* data = null_points || count == 0 ? nullptr : points.data();
     if (count == 0 && in_.pick(2) == 1) data = points.data();  // an empty vector's pointer: maybe not NULL
-    const int32_t status = observe(fn, [&] { return kairos_shape_convex_hull(data, count, null_out ? nullptr : &out); });
+    const int32_t status =
+        observe(fn, [&] { return kairos_shape_convex_hull(data, count, null_out ? nullptr : &out); });
     if (status == KAIROS_OK) points_model(*m, points.data(), count);
     if (m->magnitude > kModerateMax) m->moderate = false;
     return finish(fn, status, out, v, m);
@@ -330,7 +348,8 @@ std::optional<Built> ShapeBuilder::triangle() {
         m->moderate = moderate(p[0]) && moderate(p[1]) && moderate(p[2]);
         if (!solid || !m->moderate) v.unsure();
     }
-    const int32_t status = observe(fn, [&] { return kairos_shape_triangle(p[0], p[1], p[2], null_out ? nullptr : &out); });
+    const int32_t status =
+        observe(fn, [&] { return kairos_shape_triangle(p[0], p[1], p[2], null_out ? nullptr : &out); });
     char what[400];
     std::snprintf(what, sizeof what, "kairos_shape_triangle(%s, %s, %s)", show(p[0]), show(p[1]), show(p[2]));
     v.check(status, what);
@@ -348,8 +367,10 @@ std::optional<Built> ShapeBuilder::triangle() {
     m->moderate = all_finite && moderate(p[0]) && moderate(p[1]) && moderate(p[2]);
     if (!all_finite) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
     if (KAIROS_FUZZ_ALLOW_DEGENERATE_HULL) {
-        if (all_finite) v.allow(KAIROS_ERROR_DEGENERATE);
-        else v.require(KAIROS_ERROR_DEGENERATE);
+        if (all_finite)
+            v.allow(KAIROS_ERROR_DEGENERATE);
+        else
+            v.require(KAIROS_ERROR_DEGENERATE);
     }
     if (all_finite && !m->moderate) v.unsure();
     const int32_t status = observe(fn, [&] { return kairos_shape_convex_hull(p, 3, &out); });
@@ -360,7 +381,8 @@ std::optional<Built> ShapeBuilder::triangle() {
 }
 
 std::optional<Built> ShapeBuilder::part(int depth) {
-    if (!pool_.empty() && in_.pick(2) == 1) return pool_[in_.pick(static_cast<unsigned>(std::min<size_t>(pool_.size(), 256)))];
+    if (!pool_.empty() && in_.pick(2) == 1)
+        return pool_[in_.pick(static_cast<unsigned>(std::min<size_t>(pool_.size(), 256)))];
     return build(depth + 1);
 }
 
@@ -403,7 +425,8 @@ std::optional<Built> ShapeBuilder::composite(unsigned kind, int depth) {
         m->kind = Kind::Transformed;
         double linear[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
         switch (in_.pick(8)) {
-            case 0: break;
+            case 0:
+                break;
             case 1: {  // rotation times a diagonal scale (negative entries mirror)
                 const Placed rot = place(*m, orientation(in_), {});
                 double s[3];
@@ -464,8 +487,10 @@ std::optional<Built> ShapeBuilder::composite(unsigned kind, int depth) {
                                   std::sqrt(l[6] * l[6] + l[7] * l[7] + l[8] * l[8]);
                 // The library rejects |det| <= 1e-12 of the rows' product; near that line either.
                 if (!(rows > 0) || std::fabs(det) < 1e-13L * rows) {
-                    if (all_moderate) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
-                    else v.unsure();
+                    if (all_moderate)
+                        v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+                    else
+                        v.unsure();
                 } else if (std::fabs(det) <= 1e-11L * rows || !all_moderate) {
                     v.unsure();
                 }

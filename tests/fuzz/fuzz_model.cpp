@@ -93,9 +93,7 @@ real support_value(const Placed& p, const Vr& d) {
     return support_value(*p.model, local) + dot(d, p.position);
 }
 
-real gap(const Placed& a, const Placed& b, const Vr& u) {
-    return -support_value(b, -1 * u) - support_value(a, u);
-}
+real gap(const Placed& a, const Placed& b, const Vr& u) { return -support_value(b, -1 * u) - support_value(a, u); }
 
 const std::vector<Vr>& unit_directions() {
     static const std::vector<Vr> dirs = [] {
@@ -216,13 +214,26 @@ real inner_radius(const Model& m) {
 std::string describe(const Model& m) {
     char buf[160];
     switch (m.kind) {
-        case Kind::Point: return "point";
-        case Kind::Segment: std::snprintf(buf, sizeof buf, "segment(%.17Lg)", m.a); return buf;
-        case Kind::Sphere: std::snprintf(buf, sizeof buf, "sphere(%.17Lg)", m.a); return buf;
-        case Kind::Box: std::snprintf(buf, sizeof buf, "box(%.17Lg, %.17Lg, %.17Lg)", m.a, m.b, m.c); return buf;
-        case Kind::Capsule: std::snprintf(buf, sizeof buf, "capsule(r %.17Lg, h %.17Lg)", m.a, m.b); return buf;
-        case Kind::Cylinder: std::snprintf(buf, sizeof buf, "cylinder(r %.17Lg, h %.17Lg)", m.a, m.b); return buf;
-        case Kind::Cone: std::snprintf(buf, sizeof buf, "cone(r %.17Lg, h %.17Lg)", m.a, m.b); return buf;
+        case Kind::Point:
+            return "point";
+        case Kind::Segment:
+            std::snprintf(buf, sizeof buf, "segment(%.17Lg)", m.a);
+            return buf;
+        case Kind::Sphere:
+            std::snprintf(buf, sizeof buf, "sphere(%.17Lg)", m.a);
+            return buf;
+        case Kind::Box:
+            std::snprintf(buf, sizeof buf, "box(%.17Lg, %.17Lg, %.17Lg)", m.a, m.b, m.c);
+            return buf;
+        case Kind::Capsule:
+            std::snprintf(buf, sizeof buf, "capsule(r %.17Lg, h %.17Lg)", m.a, m.b);
+            return buf;
+        case Kind::Cylinder:
+            std::snprintf(buf, sizeof buf, "cylinder(r %.17Lg, h %.17Lg)", m.a, m.b);
+            return buf;
+        case Kind::Cone:
+            std::snprintf(buf, sizeof buf, "cone(r %.17Lg, h %.17Lg)", m.a, m.b);
+            return buf;
         case Kind::Points: {
             std::string s = "points[" + std::to_string(m.points.size()) + "]{";
             for (size_t i = 0; i < m.points.size(); ++i) {
@@ -232,8 +243,10 @@ std::string describe(const Model& m) {
             }
             return s + "}";
         }
-        case Kind::MinkowskiSum: return "minkowski_sum(" + describe(*m.left) + ", " + describe(*m.right) + ")";
-        case Kind::HullOfTwo: return "hull(" + describe(*m.left) + ", " + describe(*m.right) + ")";
+        case Kind::MinkowskiSum:
+            return "minkowski_sum(" + describe(*m.left) + ", " + describe(*m.right) + ")";
+        case Kind::HullOfTwo:
+            return "hull(" + describe(*m.left) + ", " + describe(*m.right) + ")";
         case Kind::Transformed: {
             const real* l = m.linear;
             std::string s = "transformed([";
@@ -241,7 +254,8 @@ std::string describe(const Model& m) {
                 std::snprintf(buf, sizeof buf, "%.17Lg%s", l[i], i == 8 ? "] + (" : i % 3 == 2 ? "; " : " ");
                 s += buf;
             }
-            std::snprintf(buf, sizeof buf, "%.17Lg %.17Lg %.17Lg), ", m.translation.x, m.translation.y, m.translation.z);
+            std::snprintf(buf, sizeof buf, "%.17Lg %.17Lg %.17Lg), ", m.translation.x, m.translation.y,
+                          m.translation.z);
             return s + buf + describe(*m.left) + ")";
         }
     }
@@ -260,8 +274,8 @@ const char* show(const kairos_pose& p) {
     static char ring[4][200];
     static unsigned next = 0;
     char* s = ring[next++ % 4];
-    std::snprintf(s, sizeof ring[0], "{p (%.17g %.17g %.17g) q (%.17g %.17g %.17g %.17g)}", p.position.x,
-                  p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w);
+    std::snprintf(s, sizeof ring[0], "{p (%.17g %.17g %.17g) q (%.17g %.17g %.17g %.17g)}", p.position.x, p.position.y,
+                  p.position.z, p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w);
     return s;
 }
 
@@ -276,8 +290,10 @@ bool check_support(const kairos_shape* s, const Model& m, const kairos_vec3& d, 
     poison(out);
     const int32_t status = observe("kairos_shape_support", [&] { return kairos_shape_support(s, d, &out); });
     Verdict v;
-    if (!finite(d)) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
-    else if (!m.moderate) v.unsure();
+    if (!finite(d))
+        v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    else if (!m.moderate)
+        v.unsure();
     v.check(status, "kairos_shape_support");
     if (status != KAIROS_OK) {
         if (!poisoned(out)) violation("kairos_shape_support failed but wrote *out");
@@ -292,9 +308,10 @@ bool check_support(const kairos_shape* s, const Model& m, const kairos_vec3& d, 
     const real want = support_value(m, dr);
     const real slack = (m.tolerance + kFloor) * norm(dr) + 8 * ulp(want);
     if (!(std::fabs(got - want) <= slack))
-        violation("kairos_shape_support(%s, d %s) = %s: d.x = %.17Lg but the support function is %.17Lg (diff %.3Lg, "
-                  "tolerance %.3Lg)",
-                  describe(m).c_str(), show(d), show(out), got, want, got - want, slack);
+        violation(
+            "kairos_shape_support(%s, d %s) = %s: d.x = %.17Lg but the support function is %.17Lg (diff %.3Lg, "
+            "tolerance %.3Lg)",
+            describe(m).c_str(), show(d), show(out), got, want, got - want, slack);
     return true;
 }
 
@@ -322,12 +339,14 @@ void check_bounds(const kairos_shape* s, const Model& m, const PoseCase* pose) {
     }
     const Placed placed = place(m, at);
     const real lo_r[3] = {lo.x, lo.y, lo.z}, hi_r[3] = {hi.x, hi.y, hi.z};
-    const real where = std::fmax(std::fabs(real(at.position.x)), std::fmax(std::fabs(real(at.position.y)), std::fabs(real(at.position.z))));
+    const real where = std::fmax(std::fabs(real(at.position.x)),
+                                 std::fmax(std::fabs(real(at.position.y)), std::fabs(real(at.position.z))));
     for (int axis = 0; axis < 3; ++axis) {
         Vr e;
         (axis == 0 ? e.x : axis == 1 ? e.y : e.z) = 1;
         const real want_hi = support_value(placed, e), want_lo = -support_value(placed, -1 * e);
-        const real slack = m.tolerance + kRelative * m.magnitude + 16 * ulp(where) + 8 * ulp(std::fmax(std::fabs(want_hi), std::fabs(want_lo))) + kFloor;
+        const real slack = m.tolerance + kRelative * m.magnitude + 16 * ulp(where) +
+                           8 * ulp(std::fmax(std::fabs(want_hi), std::fabs(want_lo))) + kFloor;
         if (!(lo_r[axis] <= hi_r[axis]) || !(std::fabs(hi_r[axis] - want_hi) <= slack) ||
             !(std::fabs(lo_r[axis] - want_lo) <= slack))
             violation("kairos_shape_bounds(%s, pose %s) = [%s, %s]; axis %d should be [%.17Lg, %.17Lg] within %.3Lg",

@@ -29,15 +29,17 @@ struct Posed {
 Posed pose_shape(Input& in, const Built& shape) {
     Posed p;
     p.shape = &shape;
-    if (in.rare(6)) p.null_pose = true;
-    else p.pose = make_transform(in);
+    if (in.rare(6))
+        p.null_pose = true;
+    else
+        p.pose = make_transform(in);
     return p;
 }
 
 // Size of a pair query: both shapes, how far apart their origins are, how far they move.
 real pair_size(const Posed& a, const Posed& b, const Vr& moves = {}) {
-    return a.model().magnitude + b.model().magnitude + norm(to_real(a.pose.pose.position) - to_real(b.pose.pose.position)) +
-           norm(moves);
+    return a.model().magnitude + b.model().magnitude +
+           norm(to_real(a.pose.pose.position) - to_real(b.pose.pose.position)) + norm(moves);
 }
 
 // Slack of support-plane comparisons on a posed pair: the models' own, 1e-9 of the size (the
@@ -129,7 +131,8 @@ void expect_pair(const Posed& a, const Posed& b, Verdict& v) {
 // "A <shape> at <pose>, B <shape> at <pose>" for reports.
 const char* scene(const Posed& a, const Posed& b) {
     static std::string s;
-    s = "A " + describe(a.model()) + " at " + show(a.pose.pose) + ", B " + describe(b.model()) + " at " + show(b.pose.pose);
+    s = "A " + describe(a.model()) + " at " + show(a.pose.pose) + ", B " + describe(b.model()) + " at " +
+        show(b.pose.pose);
     return s.c_str();
 }
 
@@ -159,7 +162,8 @@ DistanceCall call_distance(const Posed& a, const Posed& b, const SettingsCase& s
 bool check_distance(const Posed& a, const Posed& b, const SettingsCase& s, const kairos_distance_result& r) {
     char what[160];
     if (s.use)
-        std::snprintf(what, sizeof what, "kairos_distance(settings: struct_size %u, tolerance %.17g, max_iterations %u)",
+        std::snprintf(what, sizeof what,
+                      "kairos_distance(settings: struct_size %u, tolerance %.17g, max_iterations %u)",
                       s.settings.struct_size, s.settings.tolerance, s.settings.max_iterations);
     else
         std::snprintf(what, sizeof what, "kairos_distance(settings NULL)");
@@ -179,12 +183,14 @@ bool check_distance(const Posed& a, const Posed& b, const SettingsCase& s, const
     Vr u;
     const real g = max_gap(pa, pb, extra, &u);
     if (!(r.distance >= g - slack))
-        violation("%s = %.17g (intersecting %d, termination %d), but the shapes are %.17Lg apart along (%.6Lg %.6Lg "
-                  "%.6Lg); %s",
-                  what, r.distance, r.intersecting, r.termination, g, u.x, u.y, u.z, scene(a, b));
+        violation(
+            "%s = %.17g (intersecting %d, termination %d), but the shapes are %.17Lg apart along (%.6Lg %.6Lg "
+            "%.6Lg); %s",
+            what, r.distance, r.intersecting, r.termination, g, u.x, u.y, u.z, scene(a, b));
     // And the balls about the origins that lie inside the shapes bound it from above (the estimate
     // may exceed the distance by the requested relative tolerance; a guard-stopped one is rough).
-    if (r.termination != KAIROS_TERMINATION_MAX_ITERATIONS && inner_radius(a.model()) >= 0 && inner_radius(b.model()) >= 0) {
+    if (r.termination != KAIROS_TERMINATION_MAX_ITERATIONS && inner_radius(a.model()) >= 0 &&
+        inner_radius(b.model()) >= 0) {
         const real apart = norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)) -
                            inner_radius(a.model()) - inner_radius(b.model());
         const real t = s.use ? real(s.settings.tolerance) : 1e-10L;
@@ -226,9 +232,10 @@ void query_distance(Input& in, const Posed& a, const Posed& b) {
     const real d1 = ab.result.distance, d2 = ba.result.distance;
     const real slack = 1e-6L * pair_size(a, b) + 2 * t / (1 - t) * std::fmax(d1, d2) + pair_slack(a, b, 0);
     if (!(std::fabs(d1 - d2) <= slack))
-        violation("kairos_distance(a, b) = %.17Lg but kairos_distance(b, a) = %.17Lg (terminations %d, %d; "
-                  "tolerance %g): %s",
-                  d1, d2, ab.result.termination, ba.result.termination, s.tolerance, scene(a, b));
+        violation(
+            "kairos_distance(a, b) = %.17Lg but kairos_distance(b, a) = %.17Lg (terminations %d, %d; "
+            "tolerance %g): %s",
+            d1, d2, ab.result.termination, ba.result.termination, s.tolerance, scene(a, b));
 }
 
 // ---- Intersect ---------------------------------------------------------------------------------
@@ -237,9 +244,14 @@ void query_intersect(Input& in, const Posed& a, const Posed& b) {
     kairos_vec3 cache{0, 0, 0};
     bool use_cache = true;
     switch (in.pick(4)) {
-        case 0: break;
-        case 1: use_cache = false; break;
-        case 2: cache = direction(in); break;
+        case 0:
+            break;
+        case 1:
+            use_cache = false;
+            break;
+        case 2:
+            cache = direction(in);
+            break;
         default: {
             const DistanceCall d = call_distance(a, b, SettingsCase{});
             if (d.status == KAIROS_OK) cache = d.result.axis;
@@ -273,15 +285,17 @@ void query_intersect(Input& in, const Posed& a, const Posed& b) {
         Vr u;
         const real g = max_gap(pa, pb, {to_real(b.pose.pose.position) - to_real(a.pose.pose.position)}, &u);
         if (g > slack)
-            violation("kairos_intersect = 1, but the shapes are %.17Lg apart along (%.6Lg %.6Lg %.6Lg) (slack %.3Lg); %s",
-                      g, u.x, u.y, u.z, slack, scene(a, b));
+            violation(
+                "kairos_intersect = 1, but the shapes are %.17Lg apart along (%.6Lg %.6Lg %.6Lg) (slack %.3Lg); %s", g,
+                u.x, u.y, u.z, slack, scene(a, b));
     } else if (inner_radius(a.model()) >= 0 && inner_radius(b.model()) >= 0 &&
                norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)) <
                    inner_radius(a.model()) + inner_radius(b.model()) - slack) {
-        violation("kairos_intersect = 0, but balls inside the shapes overlap (origins %.17Lg apart, inner radii %.17Lg "
-                  "and %.17Lg); %s",
-                  norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)), inner_radius(a.model()),
-                  inner_radius(b.model()), scene(a, b));
+        violation(
+            "kairos_intersect = 0, but balls inside the shapes overlap (origins %.17Lg apart, inner radii %.17Lg "
+            "and %.17Lg); %s",
+            norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position)), inner_radius(a.model()),
+            inner_radius(b.model()), scene(a, b));
     }
     if (out == 0 && use_cache) {
         if (!finite_or_report(finite(cache), inputs_moderate(a, b), "kairos_intersect")) return;
@@ -291,9 +305,10 @@ void query_intersect(Input& in, const Posed& a, const Posed& b) {
         const Vr u = (1 / n) * axis;
         const real g = std::fmax(gap(pa, pb, u), gap(pa, pb, -1 * u));
         if (!(g >= -slack))
-            violation("kairos_intersect = 0 with axis %s, which does not separate the shapes (overlap %.17Lg, slack "
-                      "%.3Lg); %s",
-                      show(cache), -g, slack, scene(a, b));
+            violation(
+                "kairos_intersect = 0 with axis %s, which does not separate the shapes (overlap %.17Lg, slack "
+                "%.3Lg); %s",
+                show(cache), -g, slack, scene(a, b));
     }
     // Consistent with the distance: shapes farther apart than 1e-6 of their size do not intersect.
     const DistanceCall d = call_distance(a, b, SettingsCase{});
@@ -324,27 +339,32 @@ bool check_cast_fields(const kairos_cast_result& r, bool moderate_inputs, const 
 // Never a missed contact: balls inside the shapes about their origins, which move linearly over
 // the step whatever the turn, first meet at `enter` (negative: never); the cast must hit by then,
 // up to its tolerance (a fraction of the step).
-void check_not_missed(const char* what, const kairos_cast_result& r, real enter, real tolerance, const std::string& where) {
+void check_not_missed(const char* what, const kairos_cast_result& r, real enter, real tolerance,
+                      const std::string& where) {
     if (enter < 0) return;
     if (r.hit != 1)
         violation("%s: no hit, but balls inside the shapes meet at t = %.17Lg; %s", what, enter, where.c_str());
     if (!(r.toi <= enter + tolerance + 1e-9L))
-        violation("%s: hit at toi %.17g, but balls inside the shapes meet at t = %.17Lg already; %s", what, r.toi, enter,
-                  where.c_str());
+        violation("%s: hit at toi %.17g, but balls inside the shapes meet at t = %.17Lg already; %s", what, r.toi,
+                  enter, where.c_str());
 }
 
 kairos_vec3 translation(Input& in, const kairos_vec3& aim) {
     switch (in.pick(5)) {
-        case 0: return {0, 0, 0};
-        case 1: return small_vec(in, 8);
+        case 0:
+            return {0, 0, 0};
+        case 1:
+            return small_vec(in, 8);
         case 2: {
             // Toward `aim`, stopping short, reaching it, or going past.
             static const double reach[6] = {1.0, 0.5, 2.0, 0.999999, 1.000001, 10.0};
             const double k = reach[in.pick(6)];
             return {aim.x * k, aim.y * k, aim.z * k};
         }
-        case 3: return small_vec(in, power_of_ten(in));
-        default: return direction(in);
+        case 3:
+            return small_vec(in, power_of_ten(in));
+        default:
+            return direction(in);
     }
 }
 
@@ -361,13 +381,16 @@ void query_ray(Input& in, const Posed& s) {
     kairos_cast_result r;
     poison(r);
     const int32_t status = observe("kairos_ray_cast", [&] {
-        return kairos_ray_cast(s.shape->shape.get(), s.pose_arg(), origin, t, settings.use ? &settings.settings : nullptr, &r);
+        return kairos_ray_cast(s.shape->shape.get(), s.pose_arg(), origin, t,
+                               settings.use ? &settings.settings : nullptr, &r);
     });
     Verdict v;
     expect_pose(s.pose, v);
     expect_settings(settings, v);
-    if (!finite(origin) || !finite(t)) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
-    else if (!moderate(origin) || !moderate(t) || !s.model().moderate) v.unsure();
+    if (!finite(origin) || !finite(t))
+        v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    else if (!moderate(origin) || !moderate(t) || !s.model().moderate)
+        v.unsure();
     v.check(status, "kairos_ray_cast");
     if (status != KAIROS_OK) {
         if (!poisoned(r)) violation("kairos_ray_cast failed but wrote *out");
@@ -376,11 +399,14 @@ void query_ray(Input& in, const Posed& s) {
     const bool moderate_inputs = s.model().moderate && s.pose.moderate && moderate(origin) && moderate(t);
     if (!check_cast_fields(r, moderate_inputs, "kairos_ray_cast")) return;
     {
-        const real reach = inner_radius(s.model()) < 0 ? -1 : inner_radius(s.model()) * (1 - 1e-9L) -
-                           32 * ulp(std::fmax(biggest(origin) + biggest(t), biggest(s.pose.pose.position)));
+        const real reach = inner_radius(s.model()) < 0
+                               ? -1
+                               : inner_radius(s.model()) * (1 - 1e-9L) -
+                                     32 * ulp(std::fmax(biggest(origin) + biggest(t), biggest(s.pose.pose.position)));
         const std::string where = std::string("origin ") + show(origin) + ", translation " + show(t) + ", " +
                                   describe(s.model()) + " at " + show(s.pose.pose);
-        check_not_missed("kairos_ray_cast", r, first_within(to_real(origin) - to_real(s.pose.pose.position), to_real(t), reach),
+        check_not_missed("kairos_ray_cast", r,
+                         first_within(to_real(origin) - to_real(s.pose.pose.position), to_real(t), reach),
                          settings.tolerance, where);
     }
     if (r.hit == 0) return;
@@ -395,29 +421,33 @@ void query_ray(Input& in, const Posed& s) {
     // only (the header): its point is not checked, the never-late plane still is.
     const bool guard = r.termination == KAIROS_TERMINATION_MAX_ITERATIONS;
     if (r.toi > 0 && !guard && !(norm(to_real(r.point) - at) <= slack))
-        violation("kairos_ray_cast: hit point %s is %.17Lg from the ray point at toi %.17g (slack %.3Lg); origin %s, "
-                  "translation %s, %s at %s",
-                  show(r.point), norm(to_real(r.point) - at), r.toi, slack, show(origin), show(t),
-                  describe(s.model()).c_str(), show(s.pose.pose));
+        violation(
+            "kairos_ray_cast: hit point %s is %.17Lg from the ray point at toi %.17g (slack %.3Lg); origin %s, "
+            "translation %s, %s at %s",
+            show(r.point), norm(to_real(r.point) - at), r.toi, slack, show(origin), show(t),
+            describe(s.model()).c_str(), show(s.pose.pose));
     if (r.toi > 0) {
         for (const Vr& d : unit_directions())
             if (!guard && !(dot(d, to_real(r.point)) <= support_value(placed, d) + slack))
-                violation("kairos_ray_cast: hit point %s at toi %.17g lies outside the shape; origin %s, translation %s, "
-                          "%s at %s",
-                          show(r.point), r.toi, show(origin), show(t), describe(s.model()).c_str(), show(s.pose.pose));
+                violation(
+                    "kairos_ray_cast: hit point %s at toi %.17g lies outside the shape; origin %s, translation %s, "
+                    "%s at %s",
+                    show(r.point), r.toi, show(origin), show(t), describe(s.model()).c_str(), show(s.pose.pose));
         // Never late: at toi the ray point has not crossed the plane of the reported normal.
         const Vr n = to_real(r.normal);
         const real h = support_value(placed, n);
         if (!(dot(n, at) >= h - slack))
-            violation("kairos_ray_cast: at toi %.17g the ray point is %.17Lg past the support plane of normal %s; "
-                      "origin %s, translation %s, %s at %s",
-                      r.toi, h - dot(n, at), show(r.normal), show(origin), show(t), describe(s.model()).c_str(),
-                      show(s.pose.pose));
+            violation(
+                "kairos_ray_cast: at toi %.17g the ray point is %.17Lg past the support plane of normal %s; "
+                "origin %s, translation %s, %s at %s",
+                r.toi, h - dot(n, at), show(r.normal), show(origin), show(t), describe(s.model()).c_str(),
+                show(s.pose.pose));
     }
 }
 
 void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
-    const kairos_vec3 ta = in.pick(2) == 0 ? kairos_vec3{0, 0, 0} : translation(in, minus(b.pose.pose.position, a.pose.pose.position));
+    const kairos_vec3 ta =
+        in.pick(2) == 0 ? kairos_vec3{0, 0, 0} : translation(in, minus(b.pose.pose.position, a.pose.pose.position));
     const kairos_vec3 tb = translation(in, minus(a.pose.pose.position, b.pose.pose.position));
     const SettingsCase settings = make_settings(in);
     kairos_cast_result r;
@@ -429,8 +459,10 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
     Verdict v;
     expect_pair(a, b, v);
     expect_settings(settings, v);
-    if (!finite(ta) || !finite(tb)) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
-    else if (!moderate(ta) || !moderate(tb)) v.unsure();
+    if (!finite(ta) || !finite(tb))
+        v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    else if (!moderate(ta) || !moderate(tb))
+        v.unsure();
     v.check(status, "kairos_shape_cast");
     if (status != KAIROS_OK) {
         if (!poisoned(r)) violation("kairos_shape_cast failed but wrote *out");
@@ -443,8 +475,8 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
     const real slack = (2 * real(settings.tolerance) + 1e-6L) * size + pair_slack(a, b, size);
     {
         const real ra = inner_radius(a.model()), rb = inner_radius(b.model());
-        const real reach = ra < 0 || rb < 0 ? -1
-                                            : (ra + rb) * (1 - 1e-9L) - pair_slack(a, b, 0) - 32 * ulp(biggest(ta) + biggest(tb));
+        const real reach =
+            ra < 0 || rb < 0 ? -1 : (ra + rb) * (1 - 1e-9L) - pair_slack(a, b, 0) - 32 * ulp(biggest(ta) + biggest(tb));
         const Vr p0 = to_real(b.pose.pose.position) - to_real(a.pose.pose.position);
         check_not_missed("kairos_shape_cast", r, first_within(p0, rel, reach), settings.tolerance,
                          std::string("A moves ") + show(ta) + ", B moves " + show(tb) + "; " + scene(a, b));
@@ -457,18 +489,21 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
             Vr u;
             const real g = max_gap(pa0, pb0, {to_real(b.pose.pose.position) - to_real(a.pose.pose.position)}, &u);
             if (g > slack)
-                violation("kairos_shape_cast: hit at toi 0 but at the start the shapes are %.17Lg apart along "
-                          "(%.6Lg %.6Lg %.6Lg) (slack %.3Lg); A moves %s, B moves %s; %s",
-                          g, u.x, u.y, u.z, slack, show(ta), show(tb), scene(a, b));
+                violation(
+                    "kairos_shape_cast: hit at toi 0 but at the start the shapes are %.17Lg apart along "
+                    "(%.6Lg %.6Lg %.6Lg) (slack %.3Lg); A moves %s, B moves %s; %s",
+                    g, u.x, u.y, u.z, slack, show(ta), show(tb), scene(a, b));
         }
         return;
     }
     // A contact opposes the relative motion.
     if (norm(rel) > 0 && !(dot(to_real(r.normal), rel) <= 1e-6L * norm(rel)))
-        violation("kairos_shape_cast: normal %s does not oppose the relative motion %s (toi %.17g, termination %d, "
-                  "tolerance %.17g, max_iterations %u); A moves %s; %s",
-                  show(r.normal), show(minus(tb, ta)), r.toi, r.termination, settings.use ? settings.settings.tolerance : 1e-10,
-                  settings.use ? settings.settings.max_iterations : 256u, show(ta), scene(a, b));
+        violation(
+            "kairos_shape_cast: normal %s does not oppose the relative motion %s (toi %.17g, termination %d, "
+            "tolerance %.17g, max_iterations %u); A moves %s; %s",
+            show(r.normal), show(minus(tb, ta)), r.toi, r.termination,
+            settings.use ? settings.settings.tolerance : 1e-10, settings.use ? settings.settings.max_iterations : 256u,
+            show(ta), scene(a, b));
     // At toi: the point lies on both shapes, and the normal's plane still separates them (never late).
     Placed pa = pa0, pb = pb0;
     pa.position = pa0.position + real(r.toi) * to_real(ta);
@@ -476,16 +511,18 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
     const Vr n = to_real(r.normal);
     const real overlap = -gap(pa, pb, n);
     if (!(overlap <= slack))
-        violation("kairos_shape_cast: at toi %.17g the shapes overlap by %.17Lg along the normal %s (slack %.3Lg); "
-                  "A moves %s, B moves %s; %s",
-                  r.toi, overlap, show(r.normal), slack, show(ta), show(tb), scene(a, b));
+        violation(
+            "kairos_shape_cast: at toi %.17g the shapes overlap by %.17Lg along the normal %s (slack %.3Lg); "
+            "A moves %s, B moves %s; %s",
+            r.toi, overlap, show(r.normal), slack, show(ta), show(tb), scene(a, b));
     // A guard-ended hit is a lower bound of the time only (see the ray cast): its point is not checked.
     for (const Vr& d : unit_directions()) {
         if (r.termination == KAIROS_TERMINATION_MAX_ITERATIONS) break;
         const real x = dot(d, to_real(r.point));
         if (!(x <= support_value(pa, d) + slack) || !(x <= support_value(pb, d) + slack))
-            violation("kairos_shape_cast: contact point %s at toi %.17g lies outside A or B; A moves %s, B moves %s; %s",
-                      show(r.point), r.toi, show(ta), show(tb), scene(a, b));
+            violation(
+                "kairos_shape_cast: contact point %s at toi %.17g lies outside A or B; A moves %s, B moves %s; %s",
+                show(r.point), r.toi, show(ta), show(tb), scene(a, b));
     }
 }
 
@@ -554,10 +591,11 @@ void query_motion_cast(Input& in, const Posed& a, const Posed& b) {
     Vr u;
     const real g = max_gap(pa, pb, {pb_at - pa_at, to_real(r.normal)}, &u);
     if (g > near)
-        violation("kairos_motion_cast: hit at toi %.17g (termination %d) but the shapes are %.17Lg apart there along "
-                  "(%.6Lg %.6Lg %.6Lg) (allowed %.3Lg); A %s %s -> %s, B %s %s -> %s, tolerance %g",
-                  r.toi, r.termination, g, u.x, u.y, u.z, near, describe(a.model()).c_str(), show(ma.start),
-                  show(ma.end), describe(b.model()).c_str(), show(mb.start), show(mb.end), settings.tolerance);
+        violation(
+            "kairos_motion_cast: hit at toi %.17g (termination %d) but the shapes are %.17Lg apart there along "
+            "(%.6Lg %.6Lg %.6Lg) (allowed %.3Lg); A %s %s -> %s, B %s %s -> %s, tolerance %g",
+            r.toi, r.termination, g, u.x, u.y, u.z, near, describe(a.model()).c_str(), show(ma.start), show(ma.end),
+            describe(b.model()).c_str(), show(mb.start), show(mb.end), settings.tolerance);
 }
 
 }  // namespace
@@ -570,11 +608,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (int i = 0; i < 6 && (i == 0 || in.remaining() > 0); ++i) {
         const Posed pa = pose_shape(in, a), pb = pose_shape(in, b);
         switch (in.pick(5)) {
-            case 0: query_distance(in, pa, pb); break;
-            case 1: query_intersect(in, pa, pb); break;
-            case 2: query_ray(in, in.pick(2) == 0 ? pa : pb); break;
-            case 3: query_shape_cast(in, pa, pb); break;
-            default: query_motion_cast(in, pa, pb); break;
+            case 0:
+                query_distance(in, pa, pb);
+                break;
+            case 1:
+                query_intersect(in, pa, pb);
+                break;
+            case 2:
+                query_ray(in, in.pick(2) == 0 ? pa : pb);
+                break;
+            case 3:
+                query_shape_cast(in, pa, pb);
+                break;
+            default:
+                query_motion_cast(in, pa, pb);
+                break;
         }
     }
     return 0;

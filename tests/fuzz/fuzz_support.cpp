@@ -82,9 +82,26 @@ double power_of_ten(Input& in) {
 
 double edge_value(Input& in) {
     static const double values[] = {
-        0.0, -0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-        -std::numeric_limits<double>::infinity(), 4.9406564584124654e-324, DBL_MIN, DBL_MAX, -DBL_MAX, 1e-300,
-        1e300, 1e-150, 1e150, 1e-15, 1e15, DBL_EPSILON, 1.0 + DBL_EPSILON, 1.0 - DBL_EPSILON / 2, -1e-300,
+        0.0,
+        -0.0,
+        -1.0,
+        std::numeric_limits<double>::quiet_NaN(),
+        std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity(),
+        4.9406564584124654e-324,
+        DBL_MIN,
+        DBL_MAX,
+        -DBL_MAX,
+        1e-300,
+        1e300,
+        1e-150,
+        1e150,
+        1e-15,
+        1e15,
+        DBL_EPSILON,
+        1.0 + DBL_EPSILON,
+        1.0 - DBL_EPSILON / 2,
+        -1e-300,
     };
     const unsigned n = sizeof values / sizeof values[0];
     const unsigned k = in.pick(n + 1);
@@ -128,28 +145,25 @@ namespace {
 char g_error_before[1024];
 
 bool named_status(int32_t status) {
-    return status == KAIROS_OK ||
-           (status < 0 && std::strcmp(kairos_status_name(status), "KAIROS_UNKNOWN_STATUS") != 0);
+    return status == KAIROS_OK || (status < 0 && std::strcmp(kairos_status_name(status), "KAIROS_UNKNOWN_STATUS") != 0);
 }
 
 }  // namespace
 
-void observe_before() {
-    std::snprintf(g_error_before, sizeof g_error_before, "%s", kairos_last_error());
-}
+void observe_before() { std::snprintf(g_error_before, sizeof g_error_before, "%s", kairos_last_error()); }
 
 int32_t observe_after(const char* function, int32_t status) {
     if (!named_status(status))
-        violation("%s returned %d, neither KAIROS_OK nor a named error (kairos_status_name says %s)", function,
-                  status, kairos_status_name(status));
+        violation("%s returned %d, neither KAIROS_OK nor a named error (kairos_status_name says %s)", function, status,
+                  kairos_status_name(status));
     if (status == KAIROS_ERROR_INTERNAL)
         violation("%s returned KAIROS_ERROR_INTERNAL: %s", function, kairos_last_error());
     const char* message = kairos_last_error();
     if (message == nullptr) violation("kairos_last_error() returned NULL after %s", function);
     if (status == KAIROS_OK) {
         if (std::strncmp(g_error_before, message, sizeof g_error_before - 1) != 0)
-            violation("%s succeeded but changed kairos_last_error() from \"%s\" to \"%s\"", function,
-                      g_error_before, message);
+            violation("%s succeeded but changed kairos_last_error() from \"%s\" to \"%s\"", function, g_error_before,
+                      message);
     } else {
         const size_t n = std::strlen(function);
         if (std::strncmp(message, function, n) != 0 || message[n] != ':')
@@ -211,9 +225,12 @@ kairos_quat orientation(Input& in) {
             return unit_quat(ax * s, ay * s, az * s, std::cos(angle / 2));
         }
         case 3: {
-            static const kairos_quat turns[6] = {
-                {1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, -1},
-                {0.70710678118654752, 0.70710678118654752, 0, 0}, {0, 0, 0.70710678118654752, 0.70710678118654752}};
+            static const kairos_quat turns[6] = {{1, 0, 0, 0},
+                                                 {0, 1, 0, 0},
+                                                 {0, 0, 1, 0},
+                                                 {0, 0, 0, -1},
+                                                 {0.70710678118654752, 0.70710678118654752, 0, 0},
+                                                 {0, 0, 0.70710678118654752, 0.70710678118654752}};
             return turns[in.pick(6)];
         }
         case 4: {
@@ -222,7 +239,8 @@ kairos_quat orientation(Input& in) {
         }
         case 5: {
             // Off unit length on both sides of KAIROS_QUAT_TOLERANCE (1e-6).
-            static const double off[14] = {1e-9, 1e-7, 5e-7, 9e-7, 1.1e-6, 2e-6, 1e-5, 1e-3, 0.5, -0.5, 2, 1e3, -1e-7, -2e-6};
+            static const double off[14] = {1e-9, 1e-7, 5e-7, 9e-7, 1.1e-6, 2e-6,  1e-5,
+                                           1e-3, 0.5,  -0.5, 2,    1e3,    -1e-7, -2e-6};
             const kairos_quat q = fuzz_unit_quat(in);
             const double f = 1.0 + off[in.pick(14)];
             return {q.x * f, q.y * f, q.z * f, q.w * f};
@@ -231,13 +249,21 @@ kairos_quat orientation(Input& in) {
             return {in.bits(), in.bits(), in.bits(), in.bits()};
         case 7: {
             kairos_quat q = fuzz_unit_quat(in);
-            const double bad = in.pick(2) == 0 ? std::numeric_limits<double>::quiet_NaN()
-                                               : std::numeric_limits<double>::infinity();
+            const double bad =
+                in.pick(2) == 0 ? std::numeric_limits<double>::quiet_NaN() : std::numeric_limits<double>::infinity();
             switch (in.pick(4)) {
-                case 0: q.x = bad; break;
-                case 1: q.y = bad; break;
-                case 2: q.z = bad; break;
-                default: q.w = bad; break;
+                case 0:
+                    q.x = bad;
+                    break;
+                case 1:
+                    q.y = bad;
+                    break;
+                case 2:
+                    q.z = bad;
+                    break;
+                default:
+                    q.w = bad;
+                    break;
             }
             return q;
         }
@@ -283,7 +309,8 @@ PoseCase make_transform(Input& in) {
 PoseCase make_pose_near(Input& in, const kairos_pose& from) {
     kairos_pose p = from;
     switch (in.pick(5)) {
-        case 0: break;  // the same pose: a move that does not move
+        case 0:
+            break;  // the same pose: a move that does not move
         case 1: {
             const kairos_vec3 d = small_vec(in, 0.5);
             p.position = {p.position.x + d.x, p.position.y + d.y, p.position.z + d.z};
@@ -306,8 +333,10 @@ PoseCase make_pose_near(Input& in, const kairos_pose& from) {
 }
 
 void expect_pose(const PoseCase& p, Verdict& v) {
-    if (p.invalid) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
-    else if (!p.valid || !p.moderate) v.unsure();
+    if (p.invalid)
+        v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    else if (!p.valid || !p.moderate)
+        v.unsure();
 }
 
 SettingsCase make_settings(Input& in) {
@@ -325,8 +354,8 @@ SettingsCase make_settings(Input& in) {
         s.settings.struct_size = sizes[in.pick(4)];
     }
     if (mode == 6) {
-        static const double bad[7] = {0, 1, -1e-10, 1.5, std::numeric_limits<double>::quiet_NaN(),
-                                      std::numeric_limits<double>::infinity(), -0.0};
+        static const double bad[7] = {
+            0, 1, -1e-10, 1.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -0.0};
         s.settings.tolerance = bad[in.pick(7)];
     }
     if (mode == 7) s.settings.max_iterations = 0;

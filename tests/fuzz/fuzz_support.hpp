@@ -56,11 +56,11 @@ public:
     uint16_t u16();
     uint32_t u32();
     uint64_t u64();
-    double bits();                       // any double, NaN and infinities included
+    double bits();  // any double, NaN and infinities included
     unsigned pick(unsigned n) { return n <= 1 ? 0u : u8() % n; }
-    bool rare(unsigned n) { return u8() % n == n - 1; }  // about 1 in n, never on zero bytes
-    double fraction() { return u16() / 65535.0; }        // [0, 1]
-    double symmetric() { return 2.0 * fraction() - 1.0; } // [-1, 1]
+    bool rare(unsigned n) { return u8() % n == n - 1; }    // about 1 in n, never on zero bytes
+    double fraction() { return u16() / 65535.0; }          // [0, 1]
+    double symmetric() { return 2.0 * fraction() - 1.0; }  // [-1, 1]
 
 private:
     const uint8_t* p_;
@@ -80,15 +80,15 @@ private:
 
 // ---- Numbers -----------------------------------------------------------------------------------
 
-bool moderate(double v);                 // finite, and 0 or within [kModerateMin, kModerateMax]
+bool moderate(double v);  // finite, and 0 or within [kModerateMin, kModerateMax]
 bool moderate(const kairos_vec3& v);
 bool finite(const kairos_vec3& v);
-double power_of_ten(Input& in);          // mostly 1e-3..1e3; sometimes 1e+-20, 1e150..1e300, 1e-300..1e-150
-double length(Input& in);                // a size: mostly in (0, 1e3]; sometimes 0, < 0, NaN, inf, tiny, huge
-double edge_value(Input& in);            // 0, -0, +-inf, NaN, denormals, DBL_MIN/MAX, 1e+-300, ...
+double power_of_ten(Input& in);                  // mostly 1e-3..1e3; sometimes 1e+-20, 1e150..1e300, 1e-300..1e-150
+double length(Input& in);                        // a size: mostly in (0, 1e3]; sometimes 0, < 0, NaN, inf, tiny, huge
+double edge_value(Input& in);                    // 0, -0, +-inf, NaN, denormals, DBL_MIN/MAX, 1e+-300, ...
 kairos_vec3 small_vec(Input& in, double scale);  // components in [-scale, scale]
-kairos_vec3 position(Input& in);         // mostly within a few units; sometimes far, huge or non-finite
-kairos_vec3 direction(Input& in);        // any finite or non-finite vector, zero and tiny included
+kairos_vec3 position(Input& in);                 // mostly within a few units; sometimes far, huge or non-finite
+kairos_vec3 direction(Input& in);                // any finite or non-finite vector, zero and tiny included
 
 // ---- Status contract ---------------------------------------------------------------------------
 
@@ -158,7 +158,7 @@ void expect_pose(const PoseCase& p, Verdict& v);
 
 struct SettingsCase {
     kairos_query_settings settings{};
-    bool use = false;       // false: pass NULL (defaults)
+    bool use = false;          // false: pass NULL (defaults)
     double tolerance = 1e-10;  // what the query works with when valid
 };
 SettingsCase make_settings(Input& in);
@@ -192,8 +192,8 @@ enum class Kind { Point, Segment, Sphere, Box, Capsule, Cylinder, Cone, Points, 
 // h(d) = max over the shape of d.x, in long double.
 struct Model {
     Kind kind = Kind::Point;
-    real a = 0, b = 0, c = 0;          // sphere r=a; box a,b,c; capsule/cylinder/cone r=a, h=b; segment h=a
-    std::vector<Vr> points;            // hull or triangle
+    real a = 0, b = 0, c = 0;  // sphere r=a; box a,b,c; capsule/cylinder/cone r=a, h=b; segment h=a
+    std::vector<Vr> points;    // hull or triangle
     std::shared_ptr<const Model> left, right;
     real linear[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     Vr translation;
@@ -273,8 +273,8 @@ private:
     std::optional<Built> triangle();
     std::optional<Built> composite(unsigned kind, int depth);
     std::optional<Built> part(int depth);
-    std::optional<Built> finish(const char* function, int32_t status, kairos_shape* out,
-                                const Verdict& verdict, std::shared_ptr<Model> model);
+    std::optional<Built> finish(const char* function, int32_t status, kairos_shape* out, const Verdict& verdict,
+                                std::shared_ptr<Model> model);
 
     Input& in_;
     int max_depth_;

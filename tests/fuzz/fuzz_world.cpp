@@ -26,8 +26,8 @@ struct Object {
     kairos_object_id id = 0;
     uint64_t user = 0;
     ModelPtr model;
-    PoseCase pose;          // now (start of the next step)
-    PoseCase end;           // end of the next step, when moving
+    PoseCase pose;  // now (start of the next step)
+    PoseCase end;   // end of the next step, when moving
     bool moving = false;
 };
 
@@ -61,7 +61,7 @@ private:
     std::vector<kairos_object_id> removed_;
     std::set<kairos_object_id> issued_;
     uint64_t next_user_ = 1000;
-    bool stepped_ = false;          // a step succeeded: results describe it
+    bool stepped_ = false;              // a step succeeded: results describe it
     std::vector<Object> step_objects_;  // the objects of that step, with their start and end poses
 };
 
@@ -76,10 +76,14 @@ bool WorldFuzz::create() {
     Verdict v;
     bool use = true;
     switch (in_.pick(8)) {
-        case 0: use = false; break;
+        case 0:
+            use = false;
+            break;
         case 1:
         case 2:
-        case 3: buf.s.broad_phase = static_cast<int32_t>(in_.pick(4)); break;
+        case 3:
+            buf.s.broad_phase = static_cast<int32_t>(in_.pick(4));
+            break;
         case 4: {
             static const int32_t bad[4] = {4, -1, 0x7fffffff, static_cast<int32_t>(0x80000000u)};
             buf.s.broad_phase = bad[in_.pick(4)];
@@ -89,9 +93,12 @@ bool WorldFuzz::create() {
         case 5: {
             // Smaller than the first published size, or larger with a zero or non-zero tail.
             const unsigned k = in_.pick(4);
-            if (k == 0) buf.s.struct_size = 4;
-            else if (k == 1) buf.s.struct_size = sizeof(kairos_world_settings) - 8;
-            else buf.s.struct_size = sizeof(kairos_world_settings) + 16;
+            if (k == 0)
+                buf.s.struct_size = 4;
+            else if (k == 1)
+                buf.s.struct_size = sizeof(kairos_world_settings) - 8;
+            else
+                buf.s.struct_size = sizeof(kairos_world_settings) + 16;
             if (k == 3) buf.tail[in_.pick(16)] = static_cast<unsigned char>(1 + in_.pick(255));
             if (k != 2) v.require(KAIROS_ERROR_STRUCT_SIZE);
             buf.s.broad_phase = static_cast<int32_t>(in_.pick(4));
@@ -133,7 +140,8 @@ kairos_object_id WorldFuzz::choose_id(Object** live_out) {
     kairos_object_id id = 0;
     switch (in_.pick(8)) {
         case 5:
-            if (!removed_.empty()) id = removed_[in_.pick(static_cast<unsigned>(std::min<size_t>(removed_.size(), 256)))];
+            if (!removed_.empty())
+                id = removed_[in_.pick(static_cast<unsigned>(std::min<size_t>(removed_.size(), 256)))];
             break;
         case 6:
             id = in_.pick(2) == 0 ? 0 : in_.u64();
@@ -184,7 +192,8 @@ void WorldFuzz::add() {
         return;
     }
     if (out == 0) violation("kairos_world_add returned id 0");
-    if (!issued_.insert(out).second) violation("kairos_world_add returned id %llu a second time", static_cast<unsigned long long>(out));
+    if (!issued_.insert(out).second)
+        violation("kairos_world_add returned id %llu a second time", static_cast<unsigned long long>(out));
     Object o;
     o.id = out;
     o.user = user;
@@ -219,8 +228,10 @@ void WorldFuzz::set_pose(bool as_move) {
     // Which of several bad arguments is reported first is not part of the contract.
     Verdict v;
     if (o == nullptr) v.require(KAIROS_ERROR_STALE_ID);
-    if (null_pose) v.require(KAIROS_ERROR_NULL_ARGUMENT);
-    else if (pose.invalid) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    if (null_pose)
+        v.require(KAIROS_ERROR_NULL_ARGUMENT);
+    else if (pose.invalid)
+        v.require(KAIROS_ERROR_INVALID_ARGUMENT);
     if (!v.expects_error()) {
         expect_pose(pose, v);
         if (!o->model->moderate) v.unsure();
@@ -283,8 +294,9 @@ void WorldFuzz::read_results(bool after_step) {
     std::set<std::pair<kairos_object_id, kairos_object_id>> overlaps;
     for (size_t i = 0; i < pair_count; ++i) {
         const kairos_object_id a = pairs[2 * i], b = pairs[2 * i + 1];
-        if (!(a < b)) violation("kairos_world_overlaps: pair %zu is (%llu, %llu), not smaller id first", i,
-                                static_cast<unsigned long long>(a), static_cast<unsigned long long>(b));
+        if (!(a < b))
+            violation("kairos_world_overlaps: pair %zu is (%llu, %llu), not smaller id first", i,
+                      static_cast<unsigned long long>(a), static_cast<unsigned long long>(b));
         if (object_of(a) == nullptr || object_of(b) == nullptr)
             violation("kairos_world_overlaps: pair %zu names an id that was not live during the step", i);
         if (!overlaps.insert({a, b}).second) violation("kairos_world_overlaps: pair %zu listed twice", i);
@@ -297,11 +309,13 @@ void WorldFuzz::read_results(bool after_step) {
     std::set<std::pair<kairos_object_id, kairos_object_id>> touched;
     for (size_t i = 0; i < count; ++i) {
         const kairos_contact& c = contacts[i];
-        if (!(c.a < c.b)) violation("kairos_world_contacts: contact %zu has a %llu >= b %llu", i,
-                                    static_cast<unsigned long long>(c.a), static_cast<unsigned long long>(c.b));
+        if (!(c.a < c.b))
+            violation("kairos_world_contacts: contact %zu has a %llu >= b %llu", i,
+                      static_cast<unsigned long long>(c.a), static_cast<unsigned long long>(c.b));
         const Object* oa = object_of(c.a);
         const Object* ob = object_of(c.b);
-        if (oa == nullptr || ob == nullptr) violation("kairos_world_contacts: contact %zu names an id not in the step", i);
+        if (oa == nullptr || ob == nullptr)
+            violation("kairos_world_contacts: contact %zu names an id not in the step", i);
         if (c.user_a != oa->user || c.user_b != ob->user)
             violation("kairos_world_contacts: contact %zu carries user data %llu, %llu instead of %llu, %llu", i,
                       static_cast<unsigned long long>(c.user_a), static_cast<unsigned long long>(c.user_b),
@@ -311,13 +325,15 @@ void WorldFuzz::read_results(bool after_step) {
             if (KAIROS_FUZZ_ALLOW_NONFINITE_ON_HUGE && !moderate_step) continue;
             violation("kairos_world_contacts: contact %zu has a non-finite toi, point or normal", i);
         }
-        if (!(c.toi >= 0 && c.toi <= 1)) violation("kairos_world_contacts: contact %zu toi %.17g outside [0, 1]", i, c.toi);
+        if (!(c.toi >= 0 && c.toi <= 1))
+            violation("kairos_world_contacts: contact %zu toi %.17g outside [0, 1]", i, c.toi);
         if (!(std::fabs(norm(to_real(c.normal)) - 1) < 1e-6L))
             violation("kairos_world_contacts: contact %zu normal %s is not unit", i, show(c.normal));
         if (i > 0) {
             const kairos_contact& p = contacts[i - 1];
             const bool ordered = p.toi < c.toi || (p.toi == c.toi && (p.a < c.a || (p.a == c.a && p.b < c.b)));
-            if (!ordered) violation("kairos_world_contacts: contacts %zu and %zu are out of order or repeat a pair", i - 1, i);
+            if (!ordered)
+                violation("kairos_world_contacts: contacts %zu and %zu are out of order or repeat a pair", i - 1, i);
         }
         if (!touched.insert({c.a, c.b}).second) violation("kairos_world_contacts: pair of contact %zu listed twice", i);
         if (overlaps.count({c.a, c.b}) == 0)
@@ -345,18 +361,19 @@ void WorldFuzz::read_results(bool after_step) {
             for (size_t k = 0; k < count; ++k)
                 if (contacts[k].a == lo && contacts[k].b == hi) found = &contacts[k];
             if (found == nullptr)
-                violation("kairos_world_step: no contact for ids %llu and %llu, whose inner balls (radii sum %.17Lg) "
-                          "meet at t = %.17Lg (tolerance %g): A %s %s -> %s, B %s %s -> %s (%s broad-phase pair)",
-                          static_cast<unsigned long long>(a.id), static_cast<unsigned long long>(b.id), r, enter,
-                          tolerance_, describe(*a.model).c_str(), show(a.pose.pose), show(a.end.pose),
-                          describe(*b.model).c_str(), show(b.pose.pose), show(b.end.pose),
-                          overlaps.count({lo, hi}) ? "a" : "not a");
+                violation(
+                    "kairos_world_step: no contact for ids %llu and %llu, whose inner balls (radii sum %.17Lg) "
+                    "meet at t = %.17Lg (tolerance %g): A %s %s -> %s, B %s %s -> %s (%s broad-phase pair)",
+                    static_cast<unsigned long long>(a.id), static_cast<unsigned long long>(b.id), r, enter, tolerance_,
+                    describe(*a.model).c_str(), show(a.pose.pose), show(a.end.pose), describe(*b.model).c_str(),
+                    show(b.pose.pose), show(b.end.pose), overlaps.count({lo, hi}) ? "a" : "not a");
             if (!(found->toi <= enter + tolerance_ + 1e-9L))
-                violation("kairos_world_step: contact of ids %llu and %llu at toi %.17g, but their inner balls meet at "
-                          "t = %.17Lg already (tolerance %g, max_iterations %u): A %s %s -> %s, B %s %s -> %s",
-                          static_cast<unsigned long long>(lo), static_cast<unsigned long long>(hi), found->toi, enter,
-                          tolerance_, max_iterations_, describe(*a.model).c_str(), show(a.pose.pose), show(a.end.pose),
-                          describe(*b.model).c_str(), show(b.pose.pose), show(b.end.pose));
+                violation(
+                    "kairos_world_step: contact of ids %llu and %llu at toi %.17g, but their inner balls meet at "
+                    "t = %.17Lg already (tolerance %g, max_iterations %u): A %s %s -> %s, B %s %s -> %s",
+                    static_cast<unsigned long long>(lo), static_cast<unsigned long long>(hi), found->toi, enter,
+                    tolerance_, max_iterations_, describe(*a.model).c_str(), show(a.pose.pose), show(a.end.pose),
+                    describe(*b.model).c_str(), show(b.pose.pose), show(b.end.pose));
         }
 }
 
@@ -370,9 +387,14 @@ void WorldFuzz::stats() {
     Verdict v;
     uint32_t size = sizeof(kairos_step_stats);
     switch (in_.pick(4)) {
-        case 0: break;
-        case 1: size = 4 + in_.pick(static_cast<unsigned>(sizeof(kairos_step_stats) - 4)); break;
-        case 2: size = sizeof(kairos_step_stats) + in_.pick(33); break;
+        case 0:
+            break;
+        case 1:
+            size = 4 + in_.pick(static_cast<unsigned>(sizeof(kairos_step_stats) - 4));
+            break;
+        case 2:
+            size = sizeof(kairos_step_stats) + in_.pick(33);
+            break;
         default:
             size = in_.pick(4);
             v.require(KAIROS_ERROR_STRUCT_SIZE);
@@ -386,7 +408,8 @@ void WorldFuzz::stats() {
         if (std::memcmp(&before, &buf, sizeof buf) != 0) violation("kairos_world_step_stats failed but wrote *out");
         return;
     }
-    if (buf.s.struct_size != size) violation("kairos_world_step_stats changed struct_size %u to %u", size, buf.s.struct_size);
+    if (buf.s.struct_size != size)
+        violation("kairos_world_step_stats changed struct_size %u to %u", size, buf.s.struct_size);
     const auto* a = reinterpret_cast<const unsigned char*>(&before);
     const auto* b = reinterpret_cast<const unsigned char*>(&buf);
     for (size_t i = std::min<size_t>(size, sizeof(kairos_step_stats)); i < sizeof buf; ++i)
@@ -421,7 +444,8 @@ void WorldFuzz::null_arguments() {
             null.check(status, "kairos_world_step(NULL)");
             break;
         case 1:
-            status = observe("kairos_world_contacts", [&] { return kairos_world_contacts(nullptr, &contacts, &count); });
+            status =
+                observe("kairos_world_contacts", [&] { return kairos_world_contacts(nullptr, &contacts, &count); });
             null.check(status, "kairos_world_contacts(NULL, ...)");
             break;
         case 2:
@@ -464,14 +488,22 @@ void WorldFuzz::run() {
             case 0:
             case 1:
             case 2:
-            case 3: add(); break;
-            case 4: remove(); break;
+            case 3:
+                add();
+                break;
+            case 4:
+                remove();
+                break;
             case 5:
-            case 6: set_pose(false); break;
+            case 6:
+                set_pose(false);
+                break;
             case 7:
             case 8:
             case 9:
-            case 10: set_pose(true); break;
+            case 10:
+                set_pose(true);
+                break;
             case 11:
                 if (!step()) return;
                 break;
@@ -492,11 +524,17 @@ void WorldFuzz::run() {
                 }
                 if (!step()) return;
                 break;
-            case 13: read_results(false); break;
-            case 14: stats(); break;
+            case 13:
+                read_results(false);
+                break;
+            case 14:
+                stats();
+                break;
             default:
-                if (in_.pick(2) == 0) null_arguments();
-                else shapes_.clear();  // the world's own references keep its shapes alive
+                if (in_.pick(2) == 0)
+                    null_arguments();
+                else
+                    shapes_.clear();  // the world's own references keep its shapes alive
                 break;
         }
     }

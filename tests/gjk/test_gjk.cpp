@@ -16,7 +16,7 @@ using namespace gjk_test;
 
 namespace {
 
-constexpr double kTol = 1e-10;      // the public default
+constexpr double kTol = 1e-10;  // the public default
 constexpr double kEps = 2.220446049250313e-16;
 
 Transform at(Vec3 p, Quat q = {}) { return make_transform(p, q); }
@@ -76,7 +76,8 @@ TEST(GjkClosedForm, SphereBox) {
         const Transform pb = at({0.1, -0.2, 0.3}, q);
         const Vec3 local{u(rng), u(rng), u(rng)};
         const Vec3 c = pb.apply(local);
-        const Vec3 clamp{std::clamp(local.x, -h.x, h.x), std::clamp(local.y, -h.y, h.y), std::clamp(local.z, -h.z, h.z)};
+        const Vec3 clamp{std::clamp(local.x, -h.x, h.x), std::clamp(local.y, -h.y, h.y),
+                         std::clamp(local.z, -h.z, h.z)};
         const double d = length(local - clamp) - 0.3;
         const DistanceResult r = gjk_distance(*s, at(c), *b, pb, kTol, 256);
         if (d > 1e-9) {
@@ -98,8 +99,8 @@ TEST(GjkClosedForm, CapsuleCapsuleAsSegments) {
         const Transform pb = at(1.2 * random_unit(rng), random_quat(rng));
         const Vec3 a0 = pa.apply({0, 0, -1.0}), a1 = pa.apply({0, 0, 1.0});
         const Vec3 b0 = pb.apply({0, 0, -0.5}), b1 = pb.apply({0, 0, 0.5});
-        const double seg = std::sqrt(
-            static_cast<double>(oracle::segment_segment_sq(to_p3(a0), to_p3(a1), to_p3(b0), to_p3(b1))));
+        const double seg =
+            std::sqrt(static_cast<double>(oracle::segment_segment_sq(to_p3(a0), to_p3(a1), to_p3(b0), to_p3(b1))));
         const double d = seg - 0.5;
         const DistanceResult r = gjk_distance(*a, pa, *b, pb, kTol, 256);
         if (d > 1e-9) {
@@ -129,8 +130,10 @@ TEST(GjkClosedForm, AxisAlignedBoxes) {
         }
         const double d = std::sqrt(d2);
         const DistanceResult r = gjk_distance(*a, at({}), *b, at(c), kTol, 256);
-        if (d > 1e-9) expect_distance(r, d, 1e-13);
-        else EXPECT_TRUE(r.intersecting);
+        if (d > 1e-9)
+            expect_distance(r, d, 1e-13);
+        else
+            EXPECT_TRUE(r.intersecting);
     }
     // fcl#508: boxes offset along y or z only (FCL GST_LIBCCD reports 3.162 instead of 3).
     ShapePtr u1 = box({1, 1, 1});
@@ -144,7 +147,8 @@ TEST(GjkClosedForm, AxisAlignedBoxes) {
 }
 
 TEST(GjkClosedForm, PointSegmentCylinderCone) {
-    ShapePtr p(new PointShape()), seg(new SegmentShape(1.0)), cyl(new CylinderShape(0.5, 1.0)), cone(new ConeShape(0.5, 1.0));
+    ShapePtr p(new PointShape()), seg(new SegmentShape(1.0)), cyl(new CylinderShape(0.5, 1.0)),
+        cone(new ConeShape(0.5, 1.0));
     // Point above the cylinder's top face, beside its side, at a rim diagonal.
     expect_distance(gjk_distance(*p, at({0.1, 0.2, 3}), *cyl, at({}), kTol, 256), 2.0, 1e-14);
     expect_distance(gjk_distance(*cyl, at({}), *p, at({3, 0, 0.3}), kTol, 256), 2.5, 1e-14);
@@ -257,7 +261,8 @@ void run_random_pairs(uint64_t seed, int count, double far, double scale, Random
             EXPECT_GT(dot(r.axis, r.point_b - r.point_a), 0);
         } else if (o.intersecting && static_cast<double>(o.depth) > 1e-9 * local_scale) {
             ++st.intersecting;
-            EXPECT_TRUE(r.intersecting) << "oracle depth " << static_cast<double>(o.depth) << " gjk distance " << r.distance;
+            EXPECT_TRUE(r.intersecting) << "oracle depth " << static_cast<double>(o.depth) << " gjk distance "
+                                        << r.distance;
             EXPECT_EQ(r.distance, 0);
             const double pt_tol = 64 * kEps * world_scale;
             EXPECT_LE(static_cast<double>(oracle::plane_excess(oa, to_p3(r.point_a))), pt_tol);
@@ -285,8 +290,9 @@ void report(const char* name, RandomStats& st) {
     std::sort(e.begin(), e.end());
     const double med = e.empty() ? 0 : e[e.size() / 2];
     const double mx = e.empty() ? 0 : e.back();
-    std::printf("[%s] separated %d intersecting %d touching %d; relative distance error vs oracle: median %.3g max %.3g\n",
-                name, st.separated, st.intersecting, st.touching, med, mx);
+    std::printf(
+        "[%s] separated %d intersecting %d touching %d; relative distance error vs oracle: median %.3g max %.3g\n",
+        name, st.separated, st.intersecting, st.touching, med, mx);
 }
 
 }  // namespace
@@ -363,8 +369,8 @@ TEST(GjkHard, NearlyParallelFaces) {
     std::mt19937_64 rng(5);
     for (double angle : {1e-3, 1e-6, 1e-9, 1e-12}) {
         const Vec3 axis = random_unit(rng);
-        const Quat q = normalized(Quat{axis.x * std::sin(angle / 2), axis.y * std::sin(angle / 2), axis.z * std::sin(angle / 2),
-                                       std::cos(angle / 2)});
+        const Quat q = normalized(Quat{axis.x * std::sin(angle / 2), axis.y * std::sin(angle / 2),
+                                       axis.z * std::sin(angle / 2), std::cos(angle / 2)});
         const Transform pb = at({2.5, 0.2, 0.1}, q);
         const oracle::Result o = oracle::distance(world_polytope(box_vertices({1, 1, 1}), at({})),
                                                   world_polytope(box_vertices({1, 1, 1}), pb));
@@ -471,14 +477,16 @@ TEST(GjkTermination, ReportedRules) {
     EXPECT_EQ(gjk_distance(*b, at({}), *b, at({0.5, 0.2, 0.1}), kTol, 256).termination, Termination::FullSimplex);
     EXPECT_EQ(gjk_distance(*b, at({}), *b, at({3, 0.2, 0.1}), kTol, 256).termination, Termination::RelativeError);
     // A round shape at a loose tolerance ends on the relative error rule with a few iterations.
-    const DistanceResult r = gjk_distance(*cyl, at({}), *cyl, at({3, 0.2, 0.1}, normalized(Quat{0.3, 0.1, 0, 1})), 1e-3, 256);
+    const DistanceResult r =
+        gjk_distance(*cyl, at({}), *cyl, at({3, 0.2, 0.1}, normalized(Quat{0.3, 0.1, 0, 1})), 1e-3, 256);
     EXPECT_EQ(r.termination, Termination::RelativeError);
     EXPECT_LT(r.iterations, 20u);
     // At the default tolerance every run ends on a documented rule, never on the guard.
     std::mt19937_64 rng(3);
     int counts[10] = {};
     for (int i = 0; i < 500; ++i) {
-        const DistanceResult q = gjk_distance(*cyl, at({}), *cyl, at(3.0 * random_unit(rng), random_quat(rng)), kTol, 256);
+        const DistanceResult q =
+            gjk_distance(*cyl, at({}), *cyl, at(3.0 * random_unit(rng), random_quat(rng)), kTol, 256);
         counts[static_cast<int>(q.termination)]++;
         EXPECT_NE(q.termination, Termination::MaxIterations);
         EXPECT_NE(q.termination, Termination::None);
@@ -505,7 +513,7 @@ TEST(GjkIntersect, CachedAxisOnSmoothMotion) {
         const Transform pa = at({0, 0, 0}, normalized(Quat{std::sin(0.3 * t), 0.2, 0.1, std::cos(0.3 * t)}));
         const double rad = 2.45 + 0.9 * std::sin(1.7 * t);
         const Transform pb = at({rad * std::cos(t), rad * std::sin(t), 0.3 * std::sin(0.5 * t)},
-                           normalized(Quat{0.1, std::sin(0.7 * t), 0.3, std::cos(0.7 * t)}));
+                                normalized(Quat{0.1, std::sin(0.7 * t), 0.3, std::cos(0.7 * t)}));
         uint32_t it = 0;
         const bool hit = gjk_intersect(*h, pa, *b, pb, axis, &it);
         total += it;
@@ -522,9 +530,10 @@ TEST(GjkIntersect, CachedAxisOnSmoothMotion) {
         }
     }
     const double mean = double(total) / frames;
-    std::printf("cached-axis intersect: mean iterations %.3f over %d frames; separated frames %.3f, "
-                "intersecting frames %.3f (%d of them)\n",
-                mean, frames, double(total_sep) / (frames - hits), hits ? double(total_hit) / hits : 0.0, hits);
+    std::printf(
+        "cached-axis intersect: mean iterations %.3f over %d frames; separated frames %.3f, "
+        "intersecting frames %.3f (%d of them)\n",
+        mean, frames, double(total_sep) / (frames - hits), hits ? double(total_hit) / hits : 0.0, hits);
     EXPECT_LE(mean, 1.5);
     EXPECT_GT(hits, frames / 20);
     EXPECT_LT(hits, frames / 4);

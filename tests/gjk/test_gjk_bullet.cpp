@@ -27,10 +27,10 @@
 static_assert(sizeof(btScalar) == sizeof(double), "this test needs Bullet's double-precision build");
 
 using namespace kairos;
-using peer::Kind;
-using peer::Spec;
 using peer::bullet_shape;
 using peer::bullet_transform;
+using peer::Kind;
+using peer::Spec;
 
 namespace {
 
@@ -73,21 +73,25 @@ TEST(GjkBullet, DistanceAgainstBulletF64) {
         if (std::fabs(bdist - r.distance) <= 1e-6 * (1 + r.distance)) continue;
         ++disagreements;
         const double tol = 1e-11 * peer::pair_scale(p);
-        bool kairos_right = r.intersecting ? peer::certify_intersecting(p.a, p.b, r.point_a, tol)
-                                           : peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, 1e-8).ok;
+        bool kairos_right =
+            r.intersecting ? peer::certify_intersecting(p.a, p.b, r.point_a, tol)
+                           : peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, 1e-8).ok;
         if (peer::is_polytope(p.a) && peer::is_polytope(p.b)) {
             const oracle::Result o = oracle::distance(gjk_test::world_polytope(p.a.verts, p.a.pose),
                                                       gjk_test::world_polytope(p.b.verts, p.b.pose));
-            kairos_right = kairos_right && std::fabs(static_cast<double>(o.distance) - r.distance) <= 1e-9 * (1 + r.distance);
+            kairos_right =
+                kairos_right && std::fabs(static_cast<double>(o.distance) - r.distance) <= 1e-9 * (1 + r.distance);
         }
         bullet_wrong += kairos_right;
-        std::printf("  Bullet f64 disagrees, pair %zu %s/%s: kairos %.12g bullet %.12g -> %s\n", i, peer::kind_name(p.a.kind),
-                    peer::kind_name(p.b.kind), r.distance, bd, kairos_right ? "Bullet wrong (Kairos certified)" : "UNEXPLAINED");
+        std::printf("  Bullet f64 disagrees, pair %zu %s/%s: kairos %.12g bullet %.12g -> %s\n", i,
+                    peer::kind_name(p.a.kind), peer::kind_name(p.b.kind), r.distance, bd,
+                    kairos_right ? "Bullet wrong (Kairos certified)" : "UNEXPLAINED");
         EXPECT_TRUE(kairos_right);
     }
-    std::printf("[Bullet f64 btGjkPairDetector] %zu pairs (%d intersecting), %d compared, %d disagreements beyond 1e-6, "
-                "%d explained as Bullet wrong; max relative difference on separated polytopes %.3g\n",
-                pairs.size(), hits, compared, disagreements, bullet_wrong, max_diff_polytope);
+    std::printf(
+        "[Bullet f64 btGjkPairDetector] %zu pairs (%d intersecting), %d compared, %d disagreements beyond 1e-6, "
+        "%d explained as Bullet wrong; max relative difference on separated polytopes %.3g\n",
+        pairs.size(), hits, compared, disagreements, bullet_wrong, max_diff_polytope);
     EXPECT_EQ(disagreements, bullet_wrong);
     EXPECT_GT(compared, int(pairs.size()) * 9 / 10);
     EXPECT_GT(hits, int(pairs.size()) / 6);

@@ -68,9 +68,9 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
     int cases = 0, intersecting = 0;
     int by_rule[10] = {};
     std::vector<double> excess_polytope, excess_curved;  // (distance - gap) / scale
-    double worst_low = 0;  // largest (gap - distance) / scale
+    double worst_low = 0;                                // largest (gap - distance) / scale
     int intersect_cases = 0, intersect_touching = 0;
-    int above_floor = 0;   // curved pairs off by more than tolerance * gap + 1e-12 of the scale
+    int above_floor = 0;  // curved pairs off by more than tolerance * gap + 1e-12 of the scale
     for (int ka = 0; ka < 6; ++ka) {
         for (int kb = 0; kb < 6; ++kb) {
             for (int i = 0; i < 120; ++i) {
@@ -107,10 +107,10 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
                         (polytopes ? excess_polytope : excess_curved).push_back(e);
                         worst_low = std::max(worst_low, -e);
                         const auto where = [&] {
-                            return ::testing::Message() << "seed " << seed << " " << peer::kind_name(a.kind) << "/"
-                                                        << peer::kind_name(b.kind) << " case " << i << " gap " << g
-                                                        << " tol " << tol << " termination "
-                                                        << static_cast<int>(d.termination);
+                            return ::testing::Message()
+                                   << "seed " << seed << " " << peer::kind_name(a.kind) << "/"
+                                   << peer::kind_name(b.kind) << " case " << i << " gap " << g << " tol " << tol
+                                   << " termination " << static_cast<int>(d.termination);
                         };
                         ASSERT_FALSE(d.intersecting) << where();
                         // |v| is a point of A - B: the distance is never below the gap beyond rounding.
@@ -132,10 +132,12 @@ TEST(GjkCurvedContact, EveryKindPairAtAKnownGap) {
     };
     const auto [pmed, pmax] = stats(excess_polytope);
     const auto [cmed, cmax] = stats(excess_curved);
-    std::printf("%d separated pairs, %d reported intersecting; (distance - gap) / scale: polytopes median %.3g max %.3g, "
-                "curved median %.3g max %.3g (%d above tolerance + 1e-12); largest shortfall %.3g\n",
-                cases, intersecting, pmed, pmax, cmed, cmax, above_floor, worst_low);
-    std::printf("gjk_intersect: %d of %d separated placements reported touching\n", intersect_touching, intersect_cases);
+    std::printf(
+        "%d separated pairs, %d reported intersecting; (distance - gap) / scale: polytopes median %.3g max %.3g, "
+        "curved median %.3g max %.3g (%d above tolerance + 1e-12); largest shortfall %.3g\n",
+        cases, intersecting, pmed, pmax, cmed, cmax, above_floor, worst_low);
+    std::printf("gjk_intersect: %d of %d separated placements reported touching\n", intersect_touching,
+                intersect_cases);
     std::printf("terminations:");
     for (int r = 0; r < 10; ++r) std::printf(" %d:%d", r, by_rule[r]);
     std::printf("\n");
@@ -177,8 +179,8 @@ TEST(GjkCurvedContact, FlatTetrahedronIsNeverFull) {
         if (o == gjk_detail::Simplex::Outcome::Full) ++full;
         EXPECT_NE(o, gjk_detail::Simplex::Outcome::Full) << "seed " << seed << " case " << i;
     }
-    std::printf("flat tetrahedra: signed volumes alone said inside in %d of %d, add() said Full in %d\n", noise_says_inside,
-                cases, full);
+    std::printf("flat tetrahedra: signed volumes alone said inside in %d of %d, add() said Full in %d\n",
+                noise_says_inside, cases, full);
     // The hazard is real: the noise alone does claim containment in some cases.
     EXPECT_GT(noise_says_inside, cases / 100);
 }

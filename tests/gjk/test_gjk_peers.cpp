@@ -31,10 +31,10 @@
 #include "gjk_peer_shapes.hpp"
 
 using namespace kairos;
-using peer::Kind;
-using peer::Spec;
 using peer::fcl_geometry;
 using peer::fcl_transform;
+using peer::Kind;
+using peer::Spec;
 
 namespace {
 
@@ -126,9 +126,9 @@ ccd_t ccd_setup() {
     return c;
 }
 
+using peer::is_polytope;
 using peer::Pair;
 using peer::pair_scale;
-using peer::is_polytope;
 using peer::random_pairs;
 
 }  // namespace
@@ -139,15 +139,14 @@ TEST(GjkPeers, FclDistanceGstIndep) {
     const uint64_t seed = 5150;
     const std::vector<Pair> pairs = random_pairs(seed, 1800);
     int crashes = 0;
-    const std::vector<PeerOut> f = run_forked(pairs.size(), [&](size_t i) {
-        return fcl_distance(pairs[i].a, pairs[i].b, fcl::GST_INDEP);
-    }, crashes);
+    const std::vector<PeerOut> f = run_forked(
+        pairs.size(), [&](size_t i) { return fcl_distance(pairs[i].a, pairs[i].b, fcl::GST_INDEP); }, crashes);
     ASSERT_EQ(f.size(), pairs.size());
     int disagreements = 0, fcl_wrong = 0, hits = 0, rounding_limited = 0;
     double worst_rel = 0;
     for (size_t i = 0; i < pairs.size(); ++i) {
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " pair " << i << " " << peer::kind_name(pairs[i].a.kind) << "/"
-                                        << peer::kind_name(pairs[i].b.kind));
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " pair " << i << " " << peer::kind_name(pairs[i].a.kind)
+                                        << "/" << peer::kind_name(pairs[i].b.kind));
         const Pair& p = pairs[i];
         auto ka = peer::make_kairos(p.a), kb = peer::make_kairos(p.b);
         const DistanceResult r = gjk_distance(*ka, p.a.pose, *kb, p.b.pose, kTol, 256);
@@ -164,7 +163,8 @@ TEST(GjkPeers, FclDistanceGstIndep) {
             ++hits;
             EXPECT_TRUE(peer::certify_intersecting(p.a, p.b, r.point_a, tol));
         } else {
-            const peer::Certificate c = peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, rel);
+            const peer::Certificate c =
+                peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, rel);
             if (c.ok && c.upper > 0) worst_rel = std::max(worst_rel, (c.upper - c.lower) / c.upper);
             EXPECT_TRUE(c.ok) << "lower " << c.lower << " upper " << c.upper << " d " << r.distance << " termination "
                               << int(r.termination) << " iterations " << r.iterations;
@@ -174,8 +174,9 @@ TEST(GjkPeers, FclDistanceGstIndep) {
         if (std::fabs(fd - r.distance) <= 1e-5 * (1 + r.distance)) continue;
         ++disagreements;
         // Explained when Kairos's answer is certified (and, for polytopes, equals the oracle's).
-        bool kairos_right = r.intersecting ? peer::certify_intersecting(p.a, p.b, r.point_a, tol)
-                                           : peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, rel).ok;
+        bool kairos_right =
+            r.intersecting ? peer::certify_intersecting(p.a, p.b, r.point_a, tol)
+                           : peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, rel).ok;
         double od = -1;
         if (is_polytope(p.a) && is_polytope(p.b)) {
             const oracle::Result o = oracle::distance(gjk_test::world_polytope(p.a.verts, p.a.pose),
@@ -185,16 +186,18 @@ TEST(GjkPeers, FclDistanceGstIndep) {
         }
         fcl_wrong += kairos_right;
         std::printf("  FCL GST_INDEP disagrees, pair %zu %s/%s: kairos %.12g fcl %.12g oracle %s%.12g -> %s\n", i,
-                    peer::kind_name(p.a.kind), peer::kind_name(p.b.kind), r.distance, f[i].distance, od < 0 ? "(n/a) " : "", od,
-                    kairos_right ? "FCL wrong (Kairos certified)" : "UNEXPLAINED");
+                    peer::kind_name(p.a.kind), peer::kind_name(p.b.kind), r.distance, f[i].distance,
+                    od < 0 ? "(n/a) " : "", od, kairos_right ? "FCL wrong (Kairos certified)" : "UNEXPLAINED");
         EXPECT_TRUE(kairos_right);
     }
-    std::printf("[FCL GST_INDEP distance] %zu pairs (%d intersecting), %d FCL crashes, %d disagreements beyond 1e-5, "
-                "%d explained as FCL wrong\n",
-                pairs.size(), hits, crashes, disagreements, fcl_wrong);
-    std::printf("[Kairos certified] worst certified relative gap (upper - lower) / upper %.3g; %d runs ended on a "
-                "rounding-limit rule\n",
-                worst_rel, rounding_limited);
+    std::printf(
+        "[FCL GST_INDEP distance] %zu pairs (%d intersecting), %d FCL crashes, %d disagreements beyond 1e-5, "
+        "%d explained as FCL wrong\n",
+        pairs.size(), hits, crashes, disagreements, fcl_wrong);
+    std::printf(
+        "[Kairos certified] worst certified relative gap (upper - lower) / upper %.3g; %d runs ended on a "
+        "rounding-limit rule\n",
+        worst_rel, rounding_limited);
     EXPECT_LT(rounding_limited, int(pairs.size()) / 50);
     EXPECT_EQ(disagreements, fcl_wrong);
     EXPECT_GT(hits, int(pairs.size()) / 6);
@@ -215,9 +218,8 @@ TEST(GjkPeers, Fcl508AxisAlignedBoxes) {
         pairs.push_back(p);
     }
     int crashes = 0;
-    const std::vector<PeerOut> f = run_forked(pairs.size(), [&](size_t i) {
-        return fcl_distance(pairs[i].a, pairs[i].b, fcl::GST_LIBCCD);
-    }, crashes);
+    const std::vector<PeerOut> f = run_forked(
+        pairs.size(), [&](size_t i) { return fcl_distance(pairs[i].a, pairs[i].b, fcl::GST_LIBCCD); }, crashes);
     int fcl_wrong = 0;
     for (size_t i = 0; i < pairs.size(); ++i) {
         auto ka = peer::make_kairos(pairs[i].a), kb = peer::make_kairos(pairs[i].b);
@@ -250,9 +252,11 @@ TEST(GjkPeers, LibccdIntersect) {
         // Arbitrate with the certified distance query.
         const DistanceResult r = gjk_distance(*ka, p.a.pose, *kb, p.b.pose, kTol, 256);
         const double tol = 1e-11 * pair_scale(p);
-        bool kairos_right = r.intersecting == k &&
-                            (k ? peer::certify_intersecting(p.a, p.b, r.point_a, tol)
-                               : peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, 1e-8).ok && r.distance > tol);
+        bool kairos_right =
+            r.intersecting == k &&
+            (k ? peer::certify_intersecting(p.a, p.b, r.point_a, tol)
+               : peer::certify_separated(p.a, p.b, r.point_a, r.point_b, r.axis, r.distance, tol, 1e-8).ok &&
+                     r.distance > tol);
         if (is_polytope(p.a) && is_polytope(p.b)) {
             const oracle::Result o = oracle::distance(gjk_test::world_polytope(p.a.verts, p.a.pose),
                                                       gjk_test::world_polytope(p.b.verts, p.b.pose));
@@ -265,9 +269,10 @@ TEST(GjkPeers, LibccdIntersect) {
                     kairos_right ? "libccd wrong (Kairos certified)" : "UNEXPLAINED");
         EXPECT_TRUE(kairos_right);
     }
-    std::printf("[libccd intersect] %zu pairs (%d intersecting): ccdGJKIntersect disagrees on %d (%d explained), "
-                "ccdMPRIntersect on %d (%d explained)\n",
-                pairs.size(), hits, gjk_dis, gjk_wrong, mpr_dis, mpr_wrong);
+    std::printf(
+        "[libccd intersect] %zu pairs (%d intersecting): ccdGJKIntersect disagrees on %d (%d explained), "
+        "ccdMPRIntersect on %d (%d explained)\n",
+        pairs.size(), hits, gjk_dis, gjk_wrong, mpr_dis, mpr_wrong);
     EXPECT_EQ(gjk_dis, gjk_wrong);
     EXPECT_EQ(mpr_dis, mpr_wrong);
     EXPECT_GT(hits, int(pairs.size()) / 6);
@@ -283,12 +288,13 @@ TEST(GjkPeers, FclGstIndepWrongOnHullPair) {
     ASSERT_EQ(p.b.kind, Kind::Hull);
     auto ka = peer::make_kairos(p.a), kb = peer::make_kairos(p.b);
     const DistanceResult r = gjk_distance(*ka, p.a.pose, *kb, p.b.pose, kTol, 256);
-    const oracle::Result o = oracle::distance(gjk_test::world_polytope(p.a.verts, p.a.pose),
-                                              gjk_test::world_polytope(p.b.verts, p.b.pose));
+    const oracle::Result o =
+        oracle::distance(gjk_test::world_polytope(p.a.verts, p.a.pose), gjk_test::world_polytope(p.b.verts, p.b.pose));
     EXPECT_FALSE(o.intersecting);
     EXPECT_NEAR(r.distance, static_cast<double>(o.distance), 1e-12);
     int crashes = 0;
-    const std::vector<PeerOut> f = run_forked(1, [&](size_t) { return fcl_distance(p.a, p.b, fcl::GST_INDEP); }, crashes);
+    const std::vector<PeerOut> f = run_forked(
+        1, [&](size_t) { return fcl_distance(p.a, p.b, fcl::GST_INDEP); }, crashes);
     std::printf("[hull pair 475] oracle %.15g kairos %.15g FCL GST_INDEP %s%.15g\n", static_cast<double>(o.distance),
                 r.distance, f[0].status == 1 ? "" : "(crashed) ", f[0].distance);
 }

@@ -56,16 +56,20 @@ struct Tally {
         late += t.late;
         far += t.far;
         guards += t.guards;
-        for (auto [to, from] : {std::pair{&early, &t.early}, {&casts, &t.casts}, {&distances, &t.distances},
-                                {&iterations, &t.iterations}, {&gaps, &t.gaps}})
+        for (auto [to, from] : {std::pair{&early, &t.early},
+                                {&casts, &t.casts},
+                                {&distances, &t.distances},
+                                {&iterations, &t.iterations},
+                                {&gaps, &t.gaps}})
             to->insert(to->end(), from->begin(), from->end());
     }
     void print(const std::string& name) const {
-        std::printf("[%-22s] cases %4d undecided %d ref hits %4d hits %4d misses %d late %d far %d guards %d | early med %.2g "
-                    "max %.2g | gap max %.2g | casts %.1f (max %.0f) distances %.1f iterations %.1f\n",
-                    name.c_str(), cases, undecided, ref_hits, hits, misses, late, far, guards, cast_test::median(early),
-                    cast_test::maximum(early), cast_test::maximum(gaps), mean(casts), cast_test::maximum(casts), mean(distances),
-                    mean(iterations));
+        std::printf(
+            "[%-22s] cases %4d undecided %d ref hits %4d hits %4d misses %d late %d far %d guards %d | early med %.2g "
+            "max %.2g | gap max %.2g | casts %.1f (max %.0f) distances %.1f iterations %.1f\n",
+            name.c_str(), cases, undecided, ref_hits, hits, misses, late, far, guards, cast_test::median(early),
+            cast_test::maximum(early), cast_test::maximum(gaps), mean(casts), cast_test::maximum(casts),
+            mean(distances), mean(iterations));
     }
 };
 
@@ -88,25 +92,25 @@ Tally run_pair(uint64_t seed, Kind ka, Kind kb, int count, double tolerance, con
         const motion_ref::Pair p = reference_pair(a, b, c);
         const auto ref = p.first_contact();
         MotionCastStats st;
-        const CastResult r =
-            motion_detail::motion_cast_with(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1), tolerance, kMaxIt, strategy, &st);
+        const CastResult r = motion_detail::motion_cast_with(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1),
+                                                             tolerance, kMaxIt, strategy, &st);
         const double delta = contact_distance(*a.shape, *b.shape, tolerance);
         const Verdict v = judge(p, ref, r, tolerance, delta, allowance_for(ka, kb));
         t.add(v, r, st);
-        const bool bad = v.miss || v.late || v.far || std::isnan(v.gap_at_toi) || !std::isfinite(r.toi) || r.toi < 0 || r.toi > 1 ||
-                         (r.hit && (!is_finite(r.point) || std::fabs(length(r.normal) - 1) > 1e-9));
+        const bool bad = v.miss || v.late || v.far || std::isnan(v.gap_at_toi) || !std::isfinite(r.toi) || r.toi < 0 ||
+                         r.toi > 1 || (r.hit && (!is_finite(r.point) || std::fabs(length(r.normal) - 1) > 1e-9));
         if (check && bad) {
-            ADD_FAILURE() << kind_name(ka) << "/" << kind_name(kb) << " seed " << seed << " trial " << i << " tol " << tolerance
-                          << ": ref hit " << ref.hit << " toi " << double(ref.toi) << " min d " << double(ref.min_distance)
-                          << " | cast hit " << r.hit << " toi " << r.toi << " termination " << int(r.termination)
-                          << " gap " << v.gap_at_toi << " delta " << delta << " casts " << st.casts;
+            ADD_FAILURE() << kind_name(ka) << "/" << kind_name(kb) << " seed " << seed << " trial " << i << " tol "
+                          << tolerance << ": ref hit " << ref.hit << " toi " << double(ref.toi) << " min d "
+                          << double(ref.min_distance) << " | cast hit " << r.hit << " toi " << r.toi << " termination "
+                          << int(r.termination) << " gap " << v.gap_at_toi << " delta " << delta << " casts "
+                          << st.casts;
         }
     }
     return t;
 }
 
 }  // namespace
-
 
 namespace {
 
@@ -224,7 +228,8 @@ TEST(MotionCast, SpinningRodAgainstWallClosedForm) {
                     for (double tol : {1e-3, 1e-10}) {
                         ++cases;
                         const CastResult r = motion_cast(*rod, ma, wall, mb, tol, kMaxIt);
-                        SCOPED_TRACE(::testing::Message() << "h " << h << " D " << D << " alpha " << alpha << " tol " << tol);
+                        SCOPED_TRACE(::testing::Message()
+                                     << "h " << h << " D " << D << " alpha " << alpha << " tol " << tol);
                         if (t_star <= 1) {
                             ASSERT_TRUE(r.hit);
                             ++hits;
@@ -259,27 +264,33 @@ TEST(MotionCast, ThinRodsTunnelThroughThinWalls) {
         const Quat to_y{-std::sin(kPi / 4), 0, 0, std::cos(kPi / 4)};
         const Quat end = normalized(about_z(angle) * to_y);
         const Vec3 slide{0, 0.1 * (u(rng) - 0.5), 0.1 * (u(rng) - 0.5)};
-        const Motion ma(state({0, 0, 0}, to_y), state(slide, u(rng) < 0.5 ? end : Quat{-end.x, -end.y, -end.z, -end.w}));
+        const Motion ma(state({0, 0, 0}, to_y),
+                        state(slide, u(rng) < 0.5 ? end : Quat{-end.x, -end.y, -end.z, -end.w}));
         const Motion mb(state({D + thickness, 0, 0}), state({D + thickness, 0, 0}));
         // Translation only (the two end poses): no hit.
-        const CastResult lin = shape_cast(rod, make_transform({0, 0, 0}, to_y), slide, wall, make_transform({D + thickness, 0, 0}, {}),
-                                          {}, 1e-10, kMaxIt);
+        const CastResult lin = shape_cast(rod, make_transform({0, 0, 0}, to_y), slide, wall,
+                                          make_transform({D + thickness, 0, 0}, {}), {}, 1e-10, kMaxIt);
         EXPECT_FALSE(lin.hit);
         const CastResult r = motion_cast(rod, ma, wall, mb, 1e-10, kMaxIt);
         ASSERT_TRUE(r.hit);
         ++hits;
         // The tip (or the slide) brings the rod to the wall's face; the reference decides when.
-        const auto p = motion_ref::Pair(rod, [&] {
-            auto b = cast_oracle::make_body(Kind::Segment);
-            b.half = h;
-            cast_oracle::finish_body(b);
-            return b;
-        }(), ma.start(), ma.end(), wall, [&] {
-            auto b = cast_oracle::make_body(Kind::Box);
-            b.half_extents = {thickness, 20, 20};
-            cast_oracle::finish_body(b);
-            return b;
-        }(), mb.start(), mb.end());
+        const auto p = motion_ref::Pair(
+            rod,
+            [&] {
+                auto b = cast_oracle::make_body(Kind::Segment);
+                b.half = h;
+                cast_oracle::finish_body(b);
+                return b;
+            }(),
+            ma.start(), ma.end(), wall,
+            [&] {
+                auto b = cast_oracle::make_body(Kind::Box);
+                b.half_extents = {thickness, 20, 20};
+                cast_oracle::finish_body(b);
+                return b;
+            }(),
+            mb.start(), mb.end());
         const auto ref = p.first_contact();
         ASSERT_TRUE(ref.hit);
         EXPECT_LE(r.toi, double(ref.toi) + 1e-10);
@@ -321,8 +332,8 @@ TEST(MotionCast, FastSpinningBoxGrazesSphere) {
                 EXPECT_GE(res.toi, t_star - 1e-2);
             }
             EXPECT_LT(st.steps, kMaxMotionSteps);
-            std::printf("[grazing] gap %8.1e tol %6.0e: hit %d toi %.9f steps %u casts %u distances %u\n", gap, tol, res.hit,
-                        res.toi, st.steps, st.casts, st.distances);
+            std::printf("[grazing] gap %8.1e tol %6.0e: hit %d toi %.9f steps %u casts %u distances %u\n", gap, tol,
+                        res.hit, res.toi, st.steps, st.casts, st.distances);
         }
     }
 }
@@ -384,10 +395,11 @@ TEST(MotionCast, PureTranslationIsTheShapeCast) {
         c.a1.orientation = c.a0.orientation;
         c.b1.orientation = {-c.b0.orientation.x, -c.b0.orientation.y, -c.b0.orientation.z, -c.b0.orientation.w};
         MotionCastStats st;
-        const CastResult r = motion_cast(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1), 1e-10, kMaxIt, &st);
-        const CastResult s = shape_cast(*a.shape, make_transform(c.a0.position, c.a0.orientation), c.a1.position - c.a0.position,
-                                        *b.shape, make_transform(c.b0.position, c.b0.orientation), c.b1.position - c.b0.position,
-                                        1e-10, kMaxIt);
+        const CastResult r =
+            motion_cast(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1), 1e-10, kMaxIt, &st);
+        const CastResult s = shape_cast(
+            *a.shape, make_transform(c.a0.position, c.a0.orientation), c.a1.position - c.a0.position, *b.shape,
+            make_transform(c.b0.position, c.b0.orientation), c.b1.position - c.b0.position, 1e-10, kMaxIt);
         EXPECT_EQ(r.hit, s.hit);
         EXPECT_EQ(r.toi, s.toi);
         EXPECT_EQ(st.casts, 1u);
@@ -410,12 +422,14 @@ TEST(MotionCast, TinyAndHalfTurnRotations) {
             const motion_ref::Pair p = reference_pair(a, b, c);
             const auto ref = p.first_contact();
             MotionCastStats st;
-            const CastResult r = motion_cast(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1), 1e-10, kMaxIt, &st);
-            const Verdict v = judge(p, ref, r, 1e-10, contact_distance(*a.shape, *b.shape, 1e-10), allowance_for(ka, kb));
+            const CastResult r =
+                motion_cast(*a.shape, Motion(c.a0, c.a1), *b.shape, Motion(c.b0, c.b1), 1e-10, kMaxIt, &st);
+            const Verdict v =
+                judge(p, ref, r, 1e-10, contact_distance(*a.shape, *b.shape, 1e-10), allowance_for(ka, kb));
             t.add(v, r, st);
-            EXPECT_FALSE(v.miss || v.late || v.far) << "seed 6 angle " << angle << " trial " << i << " " << kind_name(ka) << "/"
-                                                    << kind_name(kb) << " ref " << double(ref.toi) << " cast " << r.hit << " "
-                                                    << r.toi << " termination " << int(r.termination);
+            EXPECT_FALSE(v.miss || v.late || v.far)
+                << "seed 6 angle " << angle << " trial " << i << " " << kind_name(ka) << "/" << kind_name(kb) << " ref "
+                << double(ref.toi) << " cast " << r.hit << " " << r.toi << " termination " << int(r.termination);
             EXPECT_LT(st.steps, 200u) << "angle " << angle << " trial " << i;
         }
     }

@@ -27,7 +27,8 @@ BulletOut bullet_motion(const btConvexShape& a, const btConvexShape& b, const Mo
     btConvexCast::CastResult res;
     auto pose = [](const Pose& s) { return cast_peer::bt_pose(make_transform(s.position, s.orientation)); };
     BulletOut out;
-    out.hit = ccd.calcTimeOfImpact(pose(m.a0), pose(m.a1), pose(m.b0), pose(m.b1), res) && res.m_fraction <= btScalar(1);
+    out.hit =
+        ccd.calcTimeOfImpact(pose(m.a0), pose(m.a1), pose(m.b0), pose(m.b1), res) && res.m_fraction <= btScalar(1);
     out.toi = out.hit ? double(res.m_fraction) : 1;
     return out;
 }
@@ -51,8 +52,8 @@ void run(double max_angle, const char* name) {
         const bool odd = c.ref.hit && (!o.hit || o.toi > double(c.ref.toi) + 1e-6);
         if (odd && shown++ < 12)
             std::printf("  Bullet case %zu %s/%s: ref %.9f | Bullet hit %d toi %.9f | kairos %d %.9f\n", i,
-                        cast_test::kind_name(c.a.body.kind), cast_test::kind_name(c.b.body.kind), double(c.ref.toi), o.hit,
-                        o.toi, r.hit, r.toi);
+                        cast_test::kind_name(c.a.body.kind), cast_test::kind_name(c.b.body.kind), double(c.ref.toi),
+                        o.hit, o.toi, r.hit, r.toi);
     }
     kt.print(std::string("kairos (tol 1e-6), ") + name);
     bt.print(std::string("Bullet btContinuousConvexCollision, ") + name);

@@ -54,15 +54,17 @@ TEST(MotionCastFcl, ScrewMotionZeroTranslation) {
                                          Motion(c.motion.b0, c.motion.b1), 1e-6, 256);
         kt.add(c, true, r.hit, r.toi, 1e-6);
         ft.add(c, fcl[i].status == 0, fcl[i].hit != 0, fcl[i].toi, 1e-6);
-        const bool kairos_bad = c.ref.decided && ((c.ref.hit && !r.hit) || (c.ref.hit && r.hit && r.toi > double(c.ref.toi) + 1e-6));
-        EXPECT_FALSE(kairos_bad) << "seed " << seed << " case " << i << " " << cast_test::kind_name(c.a.body.kind) << "/"
-                                 << cast_test::kind_name(c.b.body.kind);
+        const bool kairos_bad =
+            c.ref.decided && ((c.ref.hit && !r.hit) || (c.ref.hit && r.hit && r.toi > double(c.ref.toi) + 1e-6));
+        EXPECT_FALSE(kairos_bad) << "seed " << seed << " case " << i << " " << cast_test::kind_name(c.a.body.kind)
+                                 << "/" << cast_test::kind_name(c.b.body.kind);
         const bool fcl_odd = fcl[i].status != 0 || (c.ref.hit && !fcl[i].hit) ||
                              (c.ref.hit && fcl[i].hit && fcl[i].toi > double(c.ref.toi) + 1e-6);
         if (fcl_odd)
             std::printf("  FCL case %zu %s/%s: ref %s %.9f | FCL status %d hit %d toi %.9f | kairos %d %.9f\n", i,
-                        cast_test::kind_name(c.a.body.kind), cast_test::kind_name(c.b.body.kind), c.ref.hit ? "hit" : "miss",
-                        double(c.ref.toi), fcl[i].status, fcl[i].hit, fcl[i].toi, r.hit, r.toi);
+                        cast_test::kind_name(c.a.body.kind), cast_test::kind_name(c.b.body.kind),
+                        c.ref.hit ? "hit" : "miss", double(c.ref.toi), fcl[i].status, fcl[i].hit, fcl[i].toi, r.hit,
+                        r.toi);
     }
     kt.print("kairos (tol 1e-6)");
     ft.print("FCL CA screw, zero translation");

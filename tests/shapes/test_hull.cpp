@@ -139,7 +139,8 @@ double max_length(const std::vector<Vec3>& pts) {
 // input points; and the kept vertices are input points.
 void expect_supports_match(const ConvexHullShape& hull, const std::vector<Vec3>& inputs, Rng& rng, int n_dirs) {
     const std::vector<Vec3> sorted_inputs = sorted(inputs);
-    for (const Vec3& v : hull.vertices) ASSERT_TRUE(std::binary_search(sorted_inputs.begin(), sorted_inputs.end(), v, vec_less));
+    for (const Vec3& v : hull.vertices)
+        ASSERT_TRUE(std::binary_search(sorted_inputs.begin(), sorted_inputs.end(), v, vec_less));
     const double scale = max_length(inputs);
     for (int k = 0; k < n_dirs; ++k) {
         const Vec3 d = random_unit(rng);
@@ -155,14 +156,16 @@ void expect_vertices_match_brute_force(const std::vector<IPoint>& pts, double sc
     HullHolder hull(inputs);
     ASSERT_EQ(hull.status, HullStatus::Ok);
     const std::vector<Vec3> expected = sorted(to_vecs(brute_force_vertices(pts), scale));
-    ASSERT_EQ(sorted(hull.shape->vertices), expected) << "kept " << hull.shape->vertices.size() << " of " << inputs.size()
-                                                      << " points, brute force finds " << expected.size();
+    ASSERT_EQ(sorted(hull.shape->vertices), expected)
+        << "kept " << hull.shape->vertices.size() << " of " << inputs.size() << " points, brute force finds "
+        << expected.size();
     expect_supports_match(*hull.shape, inputs, rng, 200);
 }
 
 std::vector<IPoint> random_int_points(Rng& rng, int n, int64_t r) {
     std::vector<IPoint> pts;
-    for (int i = 0; i < n; ++i) pts.push_back({uniform_int(rng, -r, r), uniform_int(rng, -r, r), uniform_int(rng, -r, r)});
+    for (int i = 0; i < n; ++i)
+        pts.push_back({uniform_int(rng, -r, r), uniform_int(rng, -r, r), uniform_int(rng, -r, r)});
     return pts;
 }
 
@@ -209,18 +212,21 @@ std::vector<IPoint> cube_surface_points(Rng& rng, bool with_corners) {
     if (with_corners)
         for (int c = 0; c < 8; ++c) pts.push_back({c & 1 ? h : -h, c & 2 ? h : -h, c & 4 ? h : -h});
     for (int i = 0; i < 40; ++i) {  // on faces
-        int64_t v[3] = {uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1)};
+        int64_t v[3] = {uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1),
+                        uniform_int(rng, -h + 1, h - 1)};
         v[uniform_int(rng, 0, 2)] = uniform_int(rng, 0, 1) ? h : -h;
         pts.push_back({v[0], v[1], v[2]});
     }
     for (int i = 0; i < 20; ++i) {  // on edges
-        int64_t v[3] = {uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1)};
+        int64_t v[3] = {uniform_int(rng, -h + 1, h - 1), uniform_int(rng, -h + 1, h - 1),
+                        uniform_int(rng, -h + 1, h - 1)};
         const int64_t free_axis = uniform_int(rng, 0, 2);
         for (int64_t a = 0; a < 3; ++a)
             if (a != free_axis) v[a] = uniform_int(rng, 0, 1) ? h : -h;
         pts.push_back({v[0], v[1], v[2]});
     }
-    for (int i = 0; i < 10; ++i) pts.push_back({uniform_int(rng, -h, h), uniform_int(rng, -h, h), uniform_int(rng, -h, h)});
+    for (int i = 0; i < 10; ++i)
+        pts.push_back({uniform_int(rng, -h, h), uniform_int(rng, -h, h), uniform_int(rng, -h, h)});
     std::shuffle(pts.begin(), pts.end(), rng);
     return pts;
 }
@@ -236,7 +242,8 @@ TEST(HullBruteForce, CubeWithPointsOnFacesAndEdges) {
             ASSERT_EQ(hull.status, HullStatus::Ok);
             // Closed form: exactly the 8 corners.
             std::vector<Vec3> corners;
-            for (int c = 0; c < 8; ++c) corners.push_back({c & 1 ? 64.0 : -64.0, c & 2 ? 64.0 : -64.0, c & 4 ? 64.0 : -64.0});
+            for (int c = 0; c < 8; ++c)
+                corners.push_back({c & 1 ? 64.0 : -64.0, c & 2 ? 64.0 : -64.0, c & 4 ? 64.0 : -64.0});
             EXPECT_EQ(sorted(hull.shape->vertices), sorted(corners));
             expect_vertices_match_brute_force(pts, 1, rng);
         }
@@ -257,7 +264,8 @@ TEST(HullBruteForce, ManySmallDegenerateLatticeSets) {
         const int n = static_cast<int>(uniform_int(rng, 4, 24));
         const int64_t zmax = trial % 3 == 0 ? 0 : 1;  // every third set is flat
         std::vector<IPoint> pts;
-        for (int i = 0; i < n; ++i) pts.push_back({uniform_int(rng, -1, 1), uniform_int(rng, -1, 1), uniform_int(rng, 0, zmax)});
+        for (int i = 0; i < n; ++i)
+            pts.push_back({uniform_int(rng, -1, 1), uniform_int(rng, -1, 1), uniform_int(rng, 0, zmax)});
         const std::vector<Vec3> inputs = to_vecs(pts, 0.75);
         HullHolder hull(inputs);
         const std::vector<IPoint> expected_ints = brute_force_vertices(pts);
@@ -281,7 +289,8 @@ TEST(HullClosedForm, RotatedCubeSurfaceKeepsOnlyCorners) {
     Quat q{0.3, -0.5, 0.2, 0.7};
     const Mat3 rot = to_matrix(normalized(q));
     std::vector<Vec3> pts, corners;
-    for (int c = 0; c < 8; ++c) corners.push_back(rot * Vec3{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+    for (int c = 0; c < 8; ++c)
+        corners.push_back(rot * Vec3{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
     pts = corners;
     for (int i = 0; i < 2000; ++i) {
         Vec3 x{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
@@ -307,7 +316,8 @@ TEST(HullStress, RotatedTranslatedNearDegenerateSets) {
         const int kind = trial % 5;
         const bool outliers = trial % 7 == 3;
         const Mat3 rot = to_matrix(normalized(Quat{gauss(rng), gauss(rng), gauss(rng), gauss(rng)}));
-        const Vec3 offset = trial % 3 == 0 ? Vec3{} : Vec3{uniform(rng, -1e4, 1e4), uniform(rng, -1e4, 1e4), uniform(rng, -1e4, 1e4)};
+        const Vec3 offset =
+            trial % 3 == 0 ? Vec3{} : Vec3{uniform(rng, -1e4, 1e4), uniform(rng, -1e4, 1e4), uniform(rng, -1e4, 1e4)};
         std::vector<Vec3> local;
         if (kind <= 1)
             for (int c = 0; c < 8; ++c) local.push_back({c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
@@ -382,12 +392,14 @@ TEST(HullClosedForm, ThinToleranceIsRelativeToTheExtent) {
         for (double bump : {1e-14, 1e-9}) {
             SCOPED_TRACE("scale " + std::to_string(std::log10(scale)) + ", bump " + std::to_string(std::log10(bump)));
             std::vector<Vec3> pts;
-            for (int c = 0; c < 8; ++c) pts.push_back(scale * Vec3{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+            for (int c = 0; c < 8; ++c)
+                pts.push_back(scale * Vec3{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
             const Vec3 top = scale * Vec3{0.25, -0.5, 1 + 2 * bump};
             pts.push_back(top);
             HullHolder hull(pts);
             ASSERT_EQ(hull.status, HullStatus::Ok);
-            const bool kept = std::find(hull.shape->vertices.begin(), hull.shape->vertices.end(), top) != hull.shape->vertices.end();
+            const bool kept =
+                std::find(hull.shape->vertices.begin(), hull.shape->vertices.end(), top) != hull.shape->vertices.end();
             EXPECT_EQ(kept, bump > 1e-12);
             EXPECT_EQ(hull.shape->vertices.size(), kept ? 9u : 8u);
         }
@@ -400,7 +412,8 @@ TEST(HullClosedForm, FullGridAndOctahedron) {
         for (int y = -3; y <= 3; ++y)
             for (int z = -3; z <= 3; ++z) {
                 grid.push_back({double(x), double(y), double(z)});
-                if (std::abs(x) + std::abs(y) + std::abs(z) <= 3) octahedron.push_back({double(x), double(y), double(z)});
+                if (std::abs(x) + std::abs(y) + std::abs(z) <= 3)
+                    octahedron.push_back({double(x), double(y), double(z)});
             }
     Rng rng(kSeed + 400);
     SCOPED_TRACE("seed " + std::to_string(kSeed + 400));
@@ -454,7 +467,8 @@ TEST(HullSphere, CoSphericalPointsAreAllVerticesAndClimbingIsExact) {
             if (k > h.neighbor_offsets[v]) {
                 ASSERT_LT(h.neighbors[k - 1], w);
             }
-            const auto first = h.neighbors.begin() + h.neighbor_offsets[w], last = h.neighbors.begin() + h.neighbor_offsets[w + 1];
+            const auto first = h.neighbors.begin() + h.neighbor_offsets[w],
+                       last = h.neighbors.begin() + h.neighbor_offsets[w + 1];
             ASSERT_NE(std::find(first, last, v), last) << "edge " << v << "-" << w << " is one-way";
         }
     }
@@ -562,7 +576,8 @@ TEST(HullDeterminism, SameInputSameHull) {
             for (int dz = -1; dz <= 1; ++dz) {
                 if (dx == 0 && dy == 0 && dz == 0) continue;
                 const Vec3 dir{double(dx), double(dy), double(dz)};
-                const auto best = std::max_element(pts.begin(), pts.end(), [&](Vec3 x, Vec3 y) { return dot(dir, x) < dot(dir, y); });
+                const auto best =
+                    std::max_element(pts.begin(), pts.end(), [&](Vec3 x, Vec3 y) { return dot(dir, x) < dot(dir, y); });
                 seeds.push_back(*best);
                 EXPECT_NE(std::find(verts.begin(), verts.begin() + 26, *best), verts.begin() + 26) << "seed not first";
             }
@@ -597,7 +612,8 @@ TEST(HullLarge, HundredThousandPoints) {
         SCOPED_TRACE(cloud == 0 ? "100k in a cube" : "100k on a sphere");
         std::vector<Vec3> pts;
         for (int i = 0; i < 100000; ++i)
-            pts.push_back(cloud == 0 ? Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)} : random_unit(rng));
+            pts.push_back(cloud == 0 ? Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}
+                                     : random_unit(rng));
         const auto start = std::chrono::steady_clock::now();
         HullHolder hull(pts);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -665,7 +681,8 @@ std::vector<IPoint> caratheodory_vertices(std::vector<IPoint> pts) {
                 inside |= in_simplex(pts[i], {others[a], others[b]});
                 for (size_t c = b + 1; c < m && !inside; ++c) {
                     inside |= in_simplex(pts[i], {others[a], others[b], others[c]});
-                    for (size_t d = c + 1; d < m && !inside; ++d) inside |= in_simplex(pts[i], {others[a], others[b], others[c], others[d]});
+                    for (size_t d = c + 1; d < m && !inside; ++d)
+                        inside |= in_simplex(pts[i], {others[a], others[b], others[c], others[d]});
                 }
             }
         }
@@ -715,7 +732,8 @@ TEST(HullDimensions, LatticeSetsOfEveryDimensionAgainstCaratheodory) {
         for (int k = 0; k < n; ++k) {
             const int64_t i = dim >= 1 ? uniform_int(rng, -3, 3) : 0, j = dim >= 2 ? uniform_int(rng, -3, 3) : 0;
             IPoint p{o.x + i * u.x + j * w.x, o.y + i * u.y + j * w.y, o.z + i * u.z + j * w.z};
-            if (dim == 3) p = {o.x + uniform_int(rng, -4, 4), o.y + uniform_int(rng, -4, 4), o.z + uniform_int(rng, -4, 4)};
+            if (dim == 3)
+                p = {o.x + uniform_int(rng, -4, 4), o.y + uniform_int(rng, -4, 4), o.z + uniform_int(rng, -4, 4)};
             pts.push_back(p);
             if (k % 3 == 0) pts.push_back(p);  // duplicates
         }

@@ -72,11 +72,15 @@ TEST(ExtremeRadius, AgainstSampledSupportForEveryKind) {
         const Shape* s;
         double slack;  // how far above the truth the bound may be, relative
     } cases[] = {
-        {"box", box.get(), 1e-9},           {"sphere", sphere.get(), 1e-9},
-        {"capsule", capsule.get(), 1e-9},   {"cylinder", cylinder.get(), 1e-9},
+        {"box", box.get(), 1e-9},
+        {"sphere", sphere.get(), 1e-9},
+        {"capsule", capsule.get(), 1e-9},
+        {"cylinder", cylinder.get(), 1e-9},
         {"tall cylinder", tall_cylinder.get(), 1e-9},
-        {"cone", cone.get(), 1e-9},         {"thin cone", thin_cone.get(), 1e-9},
-        {"segment", segment.get(), 1e-9},   {"hull", hull.get(), 1e-9},
+        {"cone", cone.get(), 1e-9},
+        {"thin cone", thin_cone.get(), 1e-9},
+        {"segment", segment.get(), 1e-9},
+        {"hull", hull.get(), 1e-9},
         {"transformed box", transformed.get(), 1.3e-3},
         {"transformed cone", transformed_cone.get(), 1.3e-3},
         {"box + sphere", sum.get(), 1.3e-3},
@@ -108,7 +112,8 @@ TEST(ExtremeRadius, ClosedForms) {
     EXPECT_DOUBLE_EQ(extreme_radius(*rod, {1, 0, 0}), 1.0);
     Ref cube(new BoxShape({1, 1, 1}));
     EXPECT_DOUBLE_EQ(extreme_radius(*cube, {0, 0, 1}), std::sqrt(2.0));
-    EXPECT_NEAR(extreme_radius(*cube, {1, 1, 1}), std::sqrt(8.0 / 3.0), 1e-15);  // body diagonal: corners at sqrt(3 - 1/3)
+    EXPECT_NEAR(extreme_radius(*cube, {1, 1, 1}), std::sqrt(8.0 / 3.0),
+                1e-15);  // body diagonal: corners at sqrt(3 - 1/3)
     Ref cyl(new CylinderShape(1, 2));
     EXPECT_DOUBLE_EQ(extreme_radius(*cyl, {0, 0, 1}), 1.0);
     EXPECT_DOUBLE_EQ(extreme_radius(*cyl, {1, 0, 0}), std::sqrt(5.0));

@@ -127,7 +127,8 @@ double radius_bound(const Shape& s) {
         }
         case ShapeKind::Transformed: {
             const auto& t = static_cast<const TransformedShape&>(s);
-            const double frobenius = std::sqrt(length_sq(t.linear.r[0]) + length_sq(t.linear.r[1]) + length_sq(t.linear.r[2]));
+            const double frobenius =
+                std::sqrt(length_sq(t.linear.r[0]) + length_sq(t.linear.r[1]) + length_sq(t.linear.r[2]));
             return frobenius * radius_bound(*t.child) + length(t.translation);
         }
         case ShapeKind::MinkowskiSum: {
@@ -175,8 +176,9 @@ Vec3 sample(const Shape& s, Rng& rng) {
         }
         case ShapeKind::Capsule: {
             const auto& c = static_cast<const CapsuleShape&>(s);
-            const double z = boundary && uniform(rng, 0, 1) < 0.5 ? (uniform(rng, 0, 1) < 0.5 ? -c.half_height : c.half_height)
-                                                                   : uniform(rng, -c.half_height, c.half_height);
+            const double z = boundary && uniform(rng, 0, 1) < 0.5
+                                 ? (uniform(rng, 0, 1) < 0.5 ? -c.half_height : c.half_height)
+                                 : uniform(rng, -c.half_height, c.half_height);
             const double radial = boundary ? c.radius : c.radius * std::cbrt(uniform(rng, 0, 1));
             return Vec3{0, 0, z} + radial * random_unit(rng);
         }
@@ -184,14 +186,16 @@ Vec3 sample(const Shape& s, Rng& rng) {
             const auto& c = static_cast<const CylinderShape&>(s);
             const double angle = uniform(rng, 0, 2 * M_PI);
             const double radial = boundary ? c.radius : c.radius * std::sqrt(uniform(rng, 0, 1));
-            const double z = boundary && uniform(rng, 0, 1) < 0.5 ? (uniform(rng, 0, 1) < 0.5 ? -c.half_height : c.half_height)
-                                                                   : uniform(rng, -c.half_height, c.half_height);
+            const double z = boundary && uniform(rng, 0, 1) < 0.5
+                                 ? (uniform(rng, 0, 1) < 0.5 ? -c.half_height : c.half_height)
+                                 : uniform(rng, -c.half_height, c.half_height);
             return {radial * std::cos(angle), radial * std::sin(angle), z};
         }
         case ShapeKind::Cone: {
             const auto& c = static_cast<const ConeShape&>(s);
             // At height z the cross-section is a disk of radius r (h - z) / (2 h).
-            const double z = boundary && uniform(rng, 0, 1) < 0.3 ? -c.half_height : uniform(rng, -c.half_height, c.half_height);
+            const double z =
+                boundary && uniform(rng, 0, 1) < 0.3 ? -c.half_height : uniform(rng, -c.half_height, c.half_height);
             const double rz = c.radius * (c.half_height - z) / (2 * c.half_height);
             const double angle = uniform(rng, 0, 2 * M_PI);
             const double radial = boundary ? rz : rz * std::sqrt(uniform(rng, 0, 1));
@@ -332,7 +336,8 @@ public:
         const Shape* cylinder = keep(new CylinderShape(0.8, 0.6));
         const Shape* cone = keep(new ConeShape(0.9, 1.3));
         std::vector<Vec3> cloud;
-        for (int i = 0; i < 60; ++i) cloud.push_back(Vec3{uniform(rng, -1, 1), uniform(rng, -2, 2), uniform(rng, -0.5, 0.5)});
+        for (int i = 0; i < 60; ++i)
+            cloud.push_back(Vec3{uniform(rng, -1, 1), uniform(rng, -2, 2), uniform(rng, -0.5, 0.5)});
         const Shape* hull = keep_hull(cloud);
         std::vector<Vec3> ball;  // > 32 vertices: the hill-climbing support
         for (int i = 0; i < 400; ++i) ball.push_back(1.5 * random_unit(rng));
@@ -438,8 +443,8 @@ TEST(ShapeSupport, MatchesClosedFormAndBeatsSampledPoints) {
         const std::vector<Vec3> dirs = test_directions(rng, 300);
         for (size_t k = 0; k < dirs.size(); ++k) {
             const Vec3 d = dirs[k];
-            SCOPED_TRACE("direction #" + std::to_string(k) + " = (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " +
-                         std::to_string(d.z) + ")");
+            SCOPED_TRACE("direction #" + std::to_string(k) + " = (" + std::to_string(d.x) + ", " + std::to_string(d.y) +
+                         ", " + std::to_string(d.z) + ")");
             const Vec3 s = support(*c.shape, d);
             const double tol = 16 * kEps * length(d) * (radius + 1);
             ASSERT_TRUE(is_finite(s));
@@ -491,8 +496,9 @@ TEST(ShapeSupport, ExtremeDirectionsThroughLargeAndSmallTransforms) {
             for (int k = 0; k < 50; ++k) {
                 const Vec3 u = random_unit(rng);
                 for (double magnitude : {1e-300, 1.0, 1e300}) {
-                    SCOPED_TRACE("seed " + std::to_string(kSeed + 5) + ", linear scale " + std::to_string(std::log10(scale)) +
-                                 ", direction " + std::to_string(k) + " times 1e" + std::to_string(std::log10(magnitude)));
+                    SCOPED_TRACE("seed " + std::to_string(kSeed + 5) + ", linear scale " +
+                                 std::to_string(std::log10(scale)) + ", direction " + std::to_string(k) + " times 1e" +
+                                 std::to_string(std::log10(magnitude)));
                     const Vec3 s = support(*t, magnitude * u);
                     ASSERT_TRUE(is_finite(s));
                     const double tol = 64 * kEps * (radius_bound(*t) + 1);

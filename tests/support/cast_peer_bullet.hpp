@@ -38,7 +38,8 @@ inline std::unique_ptr<btConvexShape> bullet_shape(const cast_test::Body& b) {
             out = std::make_unique<btCapsuleShapeZ>(s(b.radius), s(2 * b.half));
             break;
         case Kind::Box:
-            out = std::make_unique<btBoxShape>(btVector3(s(b.half_extents.x), s(b.half_extents.y), s(b.half_extents.z)));
+            out =
+                std::make_unique<btBoxShape>(btVector3(s(b.half_extents.x), s(b.half_extents.y), s(b.half_extents.z)));
             break;
         case Kind::Cylinder:
             out = std::make_unique<btCylinderShapeZ>(btVector3(s(b.radius), s(b.radius), s(b.half)));

@@ -34,7 +34,8 @@ inline std::shared_ptr<fcl::CollisionGeometryd> fcl_shape(const cast_test::Body&
         case Kind::Capsule:
             return std::make_shared<fcl::Capsuled>(d(b.radius), d(2 * b.half));
         case Kind::Box:
-            return std::make_shared<fcl::Boxd>(d(2 * b.half_extents.x), d(2 * b.half_extents.y), d(2 * b.half_extents.z));
+            return std::make_shared<fcl::Boxd>(d(2 * b.half_extents.x), d(2 * b.half_extents.y),
+                                               d(2 * b.half_extents.z));
         case Kind::Cylinder:
             return std::make_shared<fcl::Cylinderd>(d(b.radius), d(2 * b.half));
         case Kind::Cone:
@@ -64,7 +65,7 @@ inline fcl::Transform3d fcl_pose(const kairos::Transform& p, kairos::Vec3 shift 
 }
 
 struct FclOut {
-    int status = 0;   // 0 answered, 1 threw, 2 the process died (abort, signal)
+    int status = 0;  // 0 answered, 1 threw, 2 the process died (abort, signal)
     int hit = 0;
     double toi = 1;
     double seconds = 0;  // time of the call in the child
@@ -80,7 +81,8 @@ inline FclOut fcl_cast(const fcl::CollisionGeometryd* a, const fcl::CollisionGeo
     FclOut out;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-        fcl::continuousCollide(a, fcl_pose(c.pa), fcl_pose(c.pa, c.ta), b, fcl_pose(c.pb), fcl_pose(c.pb, c.tb), req, res);
+        fcl::continuousCollide(a, fcl_pose(c.pa), fcl_pose(c.pa, c.ta), b, fcl_pose(c.pb), fcl_pose(c.pb, c.tb), req,
+                               res);
         out.hit = res.is_collide ? 1 : 0;
         out.toi = res.is_collide ? res.time_of_contact : 1;
     } catch (...) {
@@ -110,7 +112,8 @@ inline std::vector<FclOut> run_guarded(int n, const std::function<FclOut(int)>& 
         }
         close(fd[1]);
         FclOut r;
-        while (next < n && read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r)) out[static_cast<size_t>(next++)] = r;
+        while (next < n && read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r))
+            out[static_cast<size_t>(next++)] = r;
         close(fd[0]);
         int st = 0;
         waitpid(pid, &st, 0);

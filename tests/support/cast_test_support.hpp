@@ -32,19 +32,27 @@ using ShapePtr = std::unique_ptr<const kairos::Shape, ShapeRelease>;
 
 inline const char* kind_name(Kind k) {
     switch (k) {
-        case Kind::Point: return "point";
-        case Kind::Segment: return "segment";
-        case Kind::Sphere: return "sphere";
-        case Kind::Box: return "box";
-        case Kind::Capsule: return "capsule";
-        case Kind::Cylinder: return "cylinder";
-        case Kind::Cone: return "cone";
-        case Kind::Hull: return "hull";
+        case Kind::Point:
+            return "point";
+        case Kind::Segment:
+            return "segment";
+        case Kind::Sphere:
+            return "sphere";
+        case Kind::Box:
+            return "box";
+        case Kind::Capsule:
+            return "capsule";
+        case Kind::Cylinder:
+            return "cylinder";
+        case Kind::Cone:
+            return "cone";
+        case Kind::Hull:
+            return "hull";
     }
     return "?";
 }
-inline constexpr Kind kAllKinds[] = {Kind::Point, Kind::Segment, Kind::Sphere, Kind::Box,
-                                     Kind::Capsule, Kind::Cylinder, Kind::Cone, Kind::Hull};
+inline constexpr Kind kAllKinds[] = {Kind::Point,   Kind::Segment,  Kind::Sphere, Kind::Box,
+                                     Kind::Capsule, Kind::Cylinder, Kind::Cone,   Kind::Hull};
 
 inline kairos::Vec3 random_unit(std::mt19937_64& rng) {
     std::normal_distribution<double> n(0, 1);
@@ -145,7 +153,8 @@ inline Solid random_solid(std::mt19937_64& rng, Kind k, double scale = 1, int hu
     const double r = ext(rng) * scale, h = ext(rng) * scale;
     const kairos::Vec3 he{ext(rng) * scale, ext(rng) * scale, ext(rng) * scale};
     std::vector<kairos::Vec3> pts;
-    if (k == Kind::Hull) pts = ellipsoid_points(rng, hull_points, {ext(rng) * scale, ext(rng) * scale, ext(rng) * scale});
+    if (k == Kind::Hull)
+        pts = ellipsoid_points(rng, hull_points, {ext(rng) * scale, ext(rng) * scale, ext(rng) * scale});
     return make_solid(k, r, h, he, pts);
 }
 
@@ -167,7 +176,8 @@ struct Cast {
     kairos::Vec3 ta, tb;
 };
 
-inline Cast random_cast(std::mt19937_64& rng, const Solid& a, const Solid& b, kairos::Vec3 base = {}, double motion_scale = 1) {
+inline Cast random_cast(std::mt19937_64& rng, const Solid& a, const Solid& b, kairos::Vec3 base = {},
+                        double motion_scale = 1) {
     std::uniform_real_distribution<double> gap(1.0, 3.0), reach(0.6, 2.2), jitter(0, 2.5), small(-0.3, 0.3);
     Cast c;
     const double sum = a.radius + b.radius;
@@ -200,8 +210,8 @@ inline Real point_gap(const Body& a, const Body& b, P3 ta, P3 tb, Real lambda, P
 
 // allowance: how much later than the truth a toi may be (fraction of the step), and how far from
 // the shapes a hit's contact point may be (relative to the size) before it counts as false.
-inline Verdict judge(const Body& a, const Body& b, P3 ta, P3 tb, const cast_oracle::Truth& t, const kairos::CastResult& r,
-                     double toi_allowance, double point_allowance) {
+inline Verdict judge(const Body& a, const Body& b, P3 ta, P3 tb, const cast_oracle::Truth& t,
+                     const kairos::CastResult& r, double toi_allowance, double point_allowance) {
     Verdict v;
     const Real size = cast_oracle::size_of(a, b);
     const P3 rr = tb - ta;

@@ -46,8 +46,9 @@ inline std::unique_ptr<btConvexShape> bullet_shape(const Spec& s) {
 
 inline btTransform bullet_transform(const kairos::Transform& p) {
     const kairos::Mat3& r = p.rotation;
-    return btTransform(btMatrix3x3(r.r[0].x, r.r[0].y, r.r[0].z, r.r[1].x, r.r[1].y, r.r[1].z, r.r[2].x, r.r[2].y, r.r[2].z),
-                       btVector3(p.translation.x, p.translation.y, p.translation.z));
+    return btTransform(
+        btMatrix3x3(r.r[0].x, r.r[0].y, r.r[0].z, r.r[1].x, r.r[1].y, r.r[1].z, r.r[2].x, r.r[2].y, r.r[2].z),
+        btVector3(p.translation.x, p.translation.y, p.translation.z));
 }
 
 }  // namespace peer

@@ -158,14 +158,17 @@ inline Spec random_spec(std::mt19937_64& rng, Kind k, int hull_points = 0) {
         case Kind::Box:
             s.a = ext(rng), s.b = ext(rng), s.c = ext(rng);
             s.verts = gjk_test::box_vertices({s.a, s.b, s.c});
-            s.local_poly = oracle::make_polytope(oracle::transform(s.verts, std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}.data(),
-                                                                   std::array<double, 3>{0, 0, 0}.data()));
+            s.local_poly = oracle::make_polytope(
+                oracle::transform(s.verts, std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}.data(),
+                                  std::array<double, 3>{0, 0, 0}.data()));
             break;
         case Kind::Hull: {
             std::uniform_int_distribution<int> n(8, 64);
-            s.verts = gjk_test::random_points(rng, hull_points > 0 ? hull_points : n(rng), {ext(rng), ext(rng), ext(rng)});
-            s.local_poly = oracle::make_polytope(oracle::transform(s.verts, std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}.data(),
-                                                                   std::array<double, 3>{0, 0, 0}.data()));
+            s.verts =
+                gjk_test::random_points(rng, hull_points > 0 ? hull_points : n(rng), {ext(rng), ext(rng), ext(rng)});
+            s.local_poly = oracle::make_polytope(
+                oracle::transform(s.verts, std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}.data(),
+                                  std::array<double, 3>{0, 0, 0}.data()));
             break;
         }
         default:
@@ -181,7 +184,8 @@ inline void place_pair(std::mt19937_64& rng, Spec& a, Spec& b) {
     std::uniform_real_distribution<double> gap(0.2, 1.6);
     a.pose = kairos::make_transform(0.2 * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
     const double reach = (extent(a) + extent(b)) * gap(rng);
-    b.pose = kairos::make_transform(a.pose.translation + reach * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
+    b.pose =
+        kairos::make_transform(a.pose.translation + reach * gjk_test::random_unit(rng), gjk_test::random_quat(rng));
 }
 
 struct Pair {

@@ -28,8 +28,8 @@ struct PeerCase {
 
 // per_pair cases per pair of peer kinds; translate: B (and A) translate too; max_angle per body;
 // B starts gap_lo..gap_hi sums of bounding radii from A.
-inline std::vector<PeerCase> peer_cases(uint64_t seed, int per_pair, bool translate, double max_angle, double gap_lo = 0.8,
-                                        double gap_hi = 1.3) {
+inline std::vector<PeerCase> peer_cases(uint64_t seed, int per_pair, bool translate, double max_angle,
+                                        double gap_lo = 0.8, double gap_hi = 1.3) {
     std::vector<PeerCase> out;
     int k = 0;
     for (Kind ka : kPeerKinds)
@@ -77,10 +77,12 @@ struct PeerTally {
     void print(const std::string& name) const {
         std::vector<double> e = early;
         std::sort(e.begin(), e.end());
-        const double med = e.empty() ? 0 : e[e.size() / 2], mn = e.empty() ? 0 : e.front(), mx = e.empty() ? 0 : e.back();
-        std::printf("[%-34s] cases %4d ref hits %4d hits %4d misses %3d late %3d false hits %3d failures %3d | "
-                    "ref - toi: min %.2g median %.2g max %.2g\n",
-                    name.c_str(), cases, ref_hits, hits, misses, late, false_hits, failures, mn, med, mx);
+        const double med = e.empty() ? 0 : e[e.size() / 2], mn = e.empty() ? 0 : e.front(),
+                     mx = e.empty() ? 0 : e.back();
+        std::printf(
+            "[%-34s] cases %4d ref hits %4d hits %4d misses %3d late %3d false hits %3d failures %3d | "
+            "ref - toi: min %.2g median %.2g max %.2g\n",
+            name.c_str(), cases, ref_hits, hits, misses, late, false_hits, failures, mn, med, mx);
     }
 };
 

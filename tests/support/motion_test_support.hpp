@@ -58,7 +58,8 @@ inline MotionCase random_case(std::mt19937_64& rng, const Solid& a, const Solid&
     c.a1 = c.a0;
     c.b1 = c.b0;
     c.a1.orientation = turn(c.a0.orientation, cast_test::random_unit(rng), angle(rng));
-    if (cs.both_rotate && u01(rng) < 0.7) c.b1.orientation = turn(c.b0.orientation, cast_test::random_unit(rng), angle(rng));
+    if (cs.both_rotate && u01(rng) < 0.7)
+        c.b1.orientation = turn(c.b0.orientation, cast_test::random_unit(rng), angle(rng));
     auto maybe_negate = [&](Quat& q) {
         if (u01(rng) < 0.5) q = {-q.x, -q.y, -q.z, -q.w};
     };
@@ -82,7 +83,8 @@ inline double contact_distance(const kairos::Shape& a, const kairos::Shape& b, d
     auto radius = [](const kairos::Shape& s) {
         Vec3 lo, hi;
         kairos::bounds(s, kairos::Transform{}, lo, hi);
-        return kairos::length(Vec3{std::fmax(std::fabs(lo.x), std::fabs(hi.x)), std::fmax(std::fabs(lo.y), std::fabs(hi.y)),
+        return kairos::length(Vec3{std::fmax(std::fabs(lo.x), std::fabs(hi.x)),
+                                   std::fmax(std::fabs(lo.y), std::fabs(hi.y)),
                                    std::fmax(std::fabs(lo.z), std::fabs(hi.z))});
     };
     const double ra = radius(a), rb = radius(b);
@@ -93,11 +95,11 @@ inline double contact_distance(const kairos::Shape& a, const kairos::Shape& b, d
 struct Verdict {
     bool undecided = false;  // the reference ran out of steps
     bool ref_hit = false;
-    bool miss = false;       // the reference proves a contact, the cast reports none
-    bool late = false;       // toi later than the reference time by more than the tolerance
-    bool far = false;        // a hit (termination Hit) where the shapes are farther apart than allowed
-    double early = 0;        // reference time - toi, both hitting (>= 0 when conservative)
-    double gap_at_toi = 0;   // true distance at toi / size
+    bool miss = false;      // the reference proves a contact, the cast reports none
+    bool late = false;      // toi later than the reference time by more than the tolerance
+    bool far = false;       // a hit (termination Hit) where the shapes are farther apart than allowed
+    double early = 0;       // reference time - toi, both hitting (>= 0 when conservative)
+    double gap_at_toi = 0;  // true distance at toi / size
 };
 
 // allowance: how far apart the shapes may be at a reported hit, beyond the contact distance

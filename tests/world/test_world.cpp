@@ -18,9 +18,9 @@
 #include "gjk/gjk.hpp"
 #include "motion/motion.hpp"
 #include "motion/motion_cast.hpp"
+#include "scene_rng.hpp"
 #include "shapes/shape.hpp"
 #include "world/world.hpp"
-#include "scene_rng.hpp"
 
 namespace kairos {
 namespace {
@@ -38,11 +38,16 @@ using ShapePtr = std::unique_ptr<const Shape, ShapeRelease>;
 ShapePtr random_shape(Rng& rng, double size) {
     const double h = size / 2;
     switch (rng.below(5)) {
-        case 0: return ShapePtr(new SphereShape(rng.uniform(0.5, 1) * h));
-        case 1: return ShapePtr(new BoxShape({rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h}));
-        case 2: return ShapePtr(new CapsuleShape(rng.uniform(0.2, 0.5) * h, rng.uniform(0.2, 0.5) * h));
-        case 3: return ShapePtr(new CylinderShape(rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h));
-        default: return ShapePtr(new ConeShape(rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h));
+        case 0:
+            return ShapePtr(new SphereShape(rng.uniform(0.5, 1) * h));
+        case 1:
+            return ShapePtr(new BoxShape({rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h}));
+        case 2:
+            return ShapePtr(new CapsuleShape(rng.uniform(0.2, 0.5) * h, rng.uniform(0.2, 0.5) * h));
+        case 3:
+            return ShapePtr(new CylinderShape(rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h));
+        default:
+            return ShapePtr(new ConeShape(rng.uniform(0.3, 1) * h, rng.uniform(0.3, 1) * h));
     }
 }
 
@@ -133,7 +138,9 @@ public:
         // Space-time pairs equal brute force over the same boxes, bit for bit in time.
         const auto& ref = brute().pairs();
         const auto& got = sap().pairs();
-        if (ref.size() != got.size()) fault("space-time SAP has " + std::to_string(got.size()) + " pairs, brute force " + std::to_string(ref.size()));
+        if (ref.size() != got.size())
+            fault("space-time SAP has " + std::to_string(got.size()) + " pairs, brute force " +
+                  std::to_string(ref.size()));
         for (std::size_t i = 0; i < std::min(ref.size(), got.size()); ++i) {
             if (ref[i].a != got[i].a || ref[i].b != got[i].b ||
                 std::bit_cast<uint64_t>(ref[i].t_first) != std::bit_cast<uint64_t>(got[i].t_first)) {
@@ -203,7 +210,8 @@ private:
             SweptAabb s;
             bounds(*b.shape, rigid(b.pose), s.start.min, s.start.max);
             bounds(*b.shape, rigid(end_of(b)), s.end.min, s.end.max);
-            const double g = grow * (1 + max_abs(s.start.max - s.start.min) + max_abs(s.start.max) + max_abs(s.start.min));
+            const double g =
+                grow * (1 + max_abs(s.start.max - s.start.min) + max_abs(s.start.max) + max_abs(s.start.min));
             for (Aabb* a : {&s.start, &s.end}) {
                 a->min = a->min - Vec3{g, g, g};
                 a->max = a->max + Vec3{g, g, g};
@@ -212,8 +220,9 @@ private:
         };
         const auto& got = sap().pairs();
         auto reported = [&](uint64_t a, uint64_t b) {
-            return std::binary_search(got.begin(), got.end(), WorldPair{a, b, 0},
-                                      [](const WorldPair& x, const WorldPair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+            return std::binary_search(
+                got.begin(), got.end(), WorldPair{a, b, 0},
+                [](const WorldPair& x, const WorldPair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
         };
         for (std::size_t x = 0; x < live.size(); ++x) {
             for (std::size_t y = x + 1; y < live.size(); ++y) {
@@ -254,8 +263,10 @@ private:
                 fault("contact " + ids(c.a, c.b) + " is not a live ordered pair");
                 continue;
             }
-            if (!(c.toi >= 0 && c.toi <= 1) || !(std::fabs(length(c.normal) - 1) < 1e-9)) fault("contact " + ids(c.a, c.b) + " out of range");
-            if (c.user_a != 1000 + static_cast<uint64_t>(a - bodies_.data()) || c.user_b != 1000 + static_cast<uint64_t>(b - bodies_.data()))
+            if (!(c.toi >= 0 && c.toi <= 1) || !(std::fabs(length(c.normal) - 1) < 1e-9))
+                fault("contact " + ids(c.a, c.b) + " out of range");
+            if (c.user_a != 1000 + static_cast<uint64_t>(a - bodies_.data()) ||
+                c.user_b != 1000 + static_cast<uint64_t>(b - bodies_.data()))
                 fault("contact " + ids(c.a, c.b) + " carries the wrong user data");
         }
         const double tol = sap().settings().tolerance;
@@ -275,11 +286,13 @@ private:
                                                     sap().settings().max_iterations);
                     if (r.hit != (c != nullptr)) {
                         fault("pair " + ids(a->id, b->id) + ": cast of the pair says hit " + std::to_string(r.hit) +
-                              " at " + std::to_string(r.toi) + ", the world " + (c ? "reports" : "does not report") + " it");
+                              " at " + std::to_string(r.toi) + ", the world " + (c ? "reports" : "does not report") +
+                              " it");
                     } else if (c != nullptr && (std::bit_cast<uint64_t>(c->toi) != std::bit_cast<uint64_t>(r.toi) ||
                                                 !(c->normal == r.normal) || !(c->point == r.point))) {
                         char buf[256];
-                        std::snprintf(buf, sizeof buf, " toi %.17g / %.17g, normal %.17g %.17g %.17g / %.17g %.17g %.17g", c->toi, r.toi,
+                        std::snprintf(buf, sizeof buf,
+                                      " toi %.17g / %.17g, normal %.17g %.17g %.17g / %.17g %.17g %.17g", c->toi, r.toi,
                                       c->normal.x, c->normal.y, c->normal.z, r.normal.x, r.normal.y, r.normal.z);
                         fault("pair " + ids(a->id, b->id) + ": contact differs from the cast of the pair:" + buf);
                     }
@@ -294,8 +307,9 @@ private:
                 const Motion mb(b->pose, still(*b) ? b->pose : end_of(*b));
                 const CastResult r = motion_cast(*a->shape, ma, *b->shape, mb, tol, sap().settings().max_iterations);
                 if (r.hit != (c != nullptr)) {
-                    fault("turning pair " + ids(a->id, b->id) + ": motion cast of the pair says hit " + std::to_string(r.hit) +
-                          " at " + std::to_string(r.toi) + ", the world " + (c ? "reports" : "does not report") + " it");
+                    fault("turning pair " + ids(a->id, b->id) + ": motion cast of the pair says hit " +
+                          std::to_string(r.hit) + " at " + std::to_string(r.toi) + ", the world " +
+                          (c ? "reports" : "does not report") + " it");
                 } else if (c != nullptr && (std::bit_cast<uint64_t>(c->toi) != std::bit_cast<uint64_t>(r.toi) ||
                                             !(c->normal == r.normal) || !(c->point == r.point))) {
                     fault("turning pair " + ids(a->id, b->id) + ": contact differs from the motion cast of the pair");
@@ -333,12 +347,13 @@ Body random_body(Rng& rng, double side, double size, double speed) {
 
 void report(const char* scene, const Harness& h) {
     const Totals& t = h.totals();
-    std::printf("[ scene    ] %-14s steps %llu  pairs/object/step %.3f  contacts/object/step %.3f  swaps/object/step "
-                "%.2f  casts %llu  axis rejections %llu  turning pairs %llu (%llu contacts)\n",
-                scene, static_cast<unsigned long long>(t.steps), h.per_object(t.pairs), h.per_object(t.contacts),
-                h.per_object(t.swaps), static_cast<unsigned long long>(t.queries),
-                static_cast<unsigned long long>(t.rejections), static_cast<unsigned long long>(t.rotating_pairs_checked),
-                static_cast<unsigned long long>(t.rotating_contacts));
+    std::printf(
+        "[ scene    ] %-14s steps %llu  pairs/object/step %.3f  contacts/object/step %.3f  swaps/object/step "
+        "%.2f  casts %llu  axis rejections %llu  turning pairs %llu (%llu contacts)\n",
+        scene, static_cast<unsigned long long>(t.steps), h.per_object(t.pairs), h.per_object(t.contacts),
+        h.per_object(t.swaps), static_cast<unsigned long long>(t.queries),
+        static_cast<unsigned long long>(t.rejections), static_cast<unsigned long long>(t.rotating_pairs_checked),
+        static_cast<unsigned long long>(t.rotating_contacts));
 }
 
 // ---- Hand-made cases -------------------------------------------------------------------------
@@ -585,7 +600,8 @@ TEST(World, SameSceneGivesBitIdenticalContacts) {
             w.step();
             out.insert(out.end(), w.contacts().begin(), w.contacts().end());
             const StepCounters& c = w.counters();
-            counts.insert(counts.end(), {c.broad_phase_pairs, c.swaps, c.narrow_phase_queries, c.gjk_iterations, c.axis_rejections});
+            counts.insert(counts.end(),
+                          {c.broad_phase_pairs, c.swaps, c.narrow_phase_queries, c.gjk_iterations, c.axis_rejections});
             for (Body& b : bodies) b.pose = end_of(b);
         }
     };

@@ -107,11 +107,13 @@ void EndpointSap::on_flush() {
                 continue;
             }
             for (uint32_t other : active_new_) {
-                if (!both_static(id, other) && overlap_on_other_axes(id, other, 0)) overlaps_.insert(pair_key(id, other));
+                if (!both_static(id, other) && overlap_on_other_axes(id, other, 0))
+                    overlaps_.insert(pair_key(id, other));
             }
             if (fresh) {
                 for (uint32_t other : active_all_) {
-                    if (!both_static(id, other) && overlap_on_other_axes(id, other, 0)) overlaps_.insert(pair_key(id, other));
+                    if (!both_static(id, other) && overlap_on_other_axes(id, other, 0))
+                        overlaps_.insert(pair_key(id, other));
                 }
             }
             auto& list = fresh ? active_new_ : active_all_;
@@ -187,7 +189,8 @@ std::string EndpointSap::check_invariants() const {
         for (std::size_t i = 0; i < arr.size(); ++i) {
             const Endpoint& e = arr[i];
             const uint32_t id = owner(e);
-            if (id >= records_.size() || records_[id].state == State::Absent || records_[id].state == State::PendingAdd) {
+            if (id >= records_.size() || records_[id].state == State::Absent ||
+                records_[id].state == State::PendingAdd) {
                 why << "axis " << axis << " index " << i << ": endpoint of absent object " << id;
                 return why.str();
             }
@@ -198,11 +201,13 @@ std::string EndpointSap::check_invariants() const {
             const Aabb& b = records_[id].box;
             const double want = is_max(e) ? b.max[axis] : b.min[axis];
             if (e.p0 != want || e.p1 != want) {
-                why << "axis " << axis << " index " << i << ": endpoint at " << e.p0 << "/" << e.p1 << ", box says " << want;
+                why << "axis " << axis << " index " << i << ": endpoint at " << e.p0 << "/" << e.p1 << ", box says "
+                    << want;
                 return why.str();
             }
             const int j1 = (axis + 1) % 3, j2 = (axis + 2) % 3;
-            if (!(e.span[0] <= b.min[j1] && e.span[1] >= b.max[j1] && e.span[2] <= b.min[j2] && e.span[3] >= b.max[j2])) {
+            if (!(e.span[0] <= b.min[j1] && e.span[1] >= b.max[j1] && e.span[2] <= b.min[j2] &&
+                  e.span[3] >= b.max[j2])) {
                 why << "axis " << axis << " index " << i << ": span of object " << id << " does not hold its box";
                 return why.str();
             }

@@ -53,16 +53,18 @@ protected:
     struct SortItem {
         uint64_t key;
         uint32_t flag_owner;  // is_max << 31 | owner
-        bool operator<(const SortItem& o) const {
-            return key != o.key ? key < o.key : flag_owner < o.flag_owner;
-        }
+        bool operator<(const SortItem& o) const { return key != o.key ? key < o.key : flag_owner < o.flag_owner; }
     };
 
     void on_flush() override;
     void on_teleport(uint32_t id, const Aabb& old_box) override;
 
-    uint32_t& ep(uint32_t id, int axis, bool max) { return ep_[id][2 * static_cast<std::size_t>(axis) + (max ? 1u : 0u)]; }
-    uint32_t ep(uint32_t id, int axis, bool max) const { return ep_[id][2 * static_cast<std::size_t>(axis) + (max ? 1u : 0u)]; }
+    uint32_t& ep(uint32_t id, int axis, bool max) {
+        return ep_[id][2 * static_cast<std::size_t>(axis) + (max ? 1u : 0u)];
+    }
+    uint32_t ep(uint32_t id, int axis, bool max) const {
+        return ep_[id][2 * static_cast<std::size_t>(axis) + (max ? 1u : 0u)];
+    }
     bool overlap_on_axis(uint32_t a, uint32_t b, int axis) const {
         return ep(a, axis, false) < ep(b, axis, true) && ep(b, axis, false) < ep(a, axis, true);
     }

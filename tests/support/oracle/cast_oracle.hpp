@@ -28,21 +28,21 @@
 
 namespace cast_oracle {
 
-using oracle::P3;
-using oracle::Real;
 using oracle::cross;
 using oracle::dot;
 using oracle::norm;
+using oracle::P3;
+using oracle::Real;
 
 enum class Kind { Point, Segment, Sphere, Box, Capsule, Cylinder, Cone, Hull };
 
 // A shape placed in the world: x_world = R x_local + t (R row-major, from the double pose).
 struct Body {
     Kind kind = Kind::Point;
-    Real radius = 0, half = 0;   // sphere/capsule/cylinder/cone radius; segment/capsule/cylinder/cone half height
-    P3 half_extents;             // box
-    std::vector<P3> verts;       // hull, local frame
-    oracle::Polytope local_poly; // hull (and box) faces for point distances, local frame
+    Real radius = 0, half = 0;    // sphere/capsule/cylinder/cone radius; segment/capsule/cylinder/cone half height
+    P3 half_extents;              // box
+    std::vector<P3> verts;        // hull, local frame
+    oracle::Polytope local_poly;  // hull (and box) faces for point distances, local frame
     Real R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     P3 t;
 
@@ -212,12 +212,14 @@ inline Real point_distance(const Body& b, P3 x) {
         case Kind::Capsule:
             return std::max(norm(q - closest_on_segment(q, {0, 0, -b.half}, {0, 0, b.half})) - b.radius, Real(0));
         case Kind::Box: {
-            const P3 e{std::max(std::fabs(q.x) - b.half_extents.x, Real(0)), std::max(std::fabs(q.y) - b.half_extents.y, Real(0)),
+            const P3 e{std::max(std::fabs(q.x) - b.half_extents.x, Real(0)),
+                       std::max(std::fabs(q.y) - b.half_extents.y, Real(0)),
                        std::max(std::fabs(q.z) - b.half_extents.z, Real(0))};
             return norm(e);
         }
         case Kind::Cylinder: {
-            const Real dr = std::max(hypot2(q.x, q.y) - b.radius, Real(0)), dz = std::max(std::fabs(q.z) - b.half, Real(0));
+            const Real dr = std::max(hypot2(q.x, q.y) - b.radius, Real(0)),
+                       dz = std::max(std::fabs(q.z) - b.half, Real(0));
             return hypot2(dr, dz);
         }
         case Kind::Cone: {
@@ -241,16 +243,20 @@ inline Real point_distance(const Body& b, P3 x) {
 
 struct Truth {
     bool hit = false;
-    Real toi = 1;        // first contact in [0, 1]
-    P3 normal;           // unit, from A toward B (outward of M at the hit); zero when ambiguous
+    Real toi = 1;  // first contact in [0, 1]
+    P3 normal;     // unit, from A toward B (outward of M at the hit); zero when ambiguous
     bool start_overlap = false;
-    Real chord = 0;      // (exit - enter) * |r| when the line meets M: small means a grazing ray
+    Real chord = 0;        // (exit - enter) * |r| when the line meets M: small means a grazing ray
     bool grazing = false;  // hit or miss is within rounding of the other: skip classification
 };
 
 // Support function of M = A - B.
-inline Real support_m(const Body& a, const Body& b, P3 n) { return support_value(a, n) + support_value(b, Real(-1) * n); }
-inline P3 support_point_m(const Body& a, const Body& b, P3 n) { return support_world(a, n) - support_world(b, Real(-1) * n); }
+inline Real support_m(const Body& a, const Body& b, P3 n) {
+    return support_value(a, n) + support_value(b, Real(-1) * n);
+}
+inline P3 support_point_m(const Body& a, const Body& b, P3 n) {
+    return support_world(a, n) - support_world(b, Real(-1) * n);
+}
 
 inline Real size_of(const Body& a, const Body& b) {
     Real s = 0;
@@ -269,9 +275,10 @@ inline Truth classify(Real enter, Real exit, P3 n_enter, Real rlen, Real size) {
     if (!(enter <= exit) || enter > 1 || exit < 0) {
         t.hit = false;
         // Within the band of touching: the ray grazes M, or touches it at the end points.
-        t.grazing = (enter <= exit + band / std::max(rlen, Real(1e-300)) && enter <= 1 + band / std::max(rlen, Real(1e-300)) &&
-                     exit >= -band / std::max(rlen, Real(1e-300))) ||
-                    (enter > exit && (enter - exit) * rlen < band);
+        t.grazing =
+            (enter <= exit + band / std::max(rlen, Real(1e-300)) && enter <= 1 + band / std::max(rlen, Real(1e-300)) &&
+             exit >= -band / std::max(rlen, Real(1e-300))) ||
+            (enter > exit && (enter - exit) * rlen < band);
         return t;
     }
     t.hit = true;
@@ -525,12 +532,14 @@ inline Truth round_toi(const Body& a, const Body& b, P3 ta, P3 tb) {
     cp.ta = ta;
     cp.tb = tb;
     Real ra = 0, rb = 0;
-    if (has_core(a.kind)) core_of(a, cp.ap, cp.aq, ra);
+    if (has_core(a.kind))
+        core_of(a, cp.ap, cp.aq, ra);
     else {
         cp.a_poly = true;
         cp.wa = world_poly(a);
     }
-    if (has_core(b.kind)) core_of(b, cp.bp, cp.bq, rb);
+    if (has_core(b.kind))
+        core_of(b, cp.bp, cp.bq, rb);
     else {
         cp.b_poly = true;
         cp.wb = world_poly(b);
@@ -559,8 +568,10 @@ inline Truth round_toi(const Body& a, const Body& b, P3 ta, P3 tb) {
     Real lo = 0, hi = 1;
     for (int i = 0; i < 200 && hi - lo > Real(1e-19); ++i) {
         const Real m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-        if (f(m1) <= f(m2)) hi = m2;
-        else lo = m1;
+        if (f(m1) <= f(m2))
+            hi = m2;
+        else
+            lo = m1;
     }
     const Real lm = (lo + hi) / 2, fm = f(lm);
     if (fm > 0) {
@@ -573,8 +584,10 @@ inline Truth round_toi(const Body& a, const Body& b, P3 ta, P3 tb) {
     for (int i = 0; i < 200 && hi - lo > Real(0); ++i) {
         const Real m = (lo + hi) / 2;
         if (m == lo || m == hi) break;
-        if (f(m) <= 0) hi = m;
-        else lo = m;
+        if (f(m) <= 0)
+            hi = m;
+        else
+            lo = m;
     }
     t.hit = true;
     t.toi = hi;
@@ -689,7 +702,8 @@ inline Truth sphere_box_toi(const Body& a, const Body& b, P3 ta, P3 tb) {
     const P3 h = x.half_extents;
     const Real size = size_of(a, b);
     // Inside at the start?
-    const P3 e{std::max(std::fabs(p.x) - h.x, Real(0)), std::max(std::fabs(p.y) - h.y, Real(0)), std::max(std::fabs(p.z) - h.z, Real(0))};
+    const P3 e{std::max(std::fabs(p.x) - h.x, Real(0)), std::max(std::fabs(p.y) - h.y, Real(0)),
+               std::max(std::fabs(p.z) - h.z, Real(0))};
     if (norm(e) <= s.radius) {
         t.hit = true;
         t.toi = 0;
@@ -710,7 +724,8 @@ inline Truth sphere_box_toi(const Body& a, const Body& b, P3 ta, P3 tb) {
     const P3 c = p + l * d;
     P3 n_local = c - bp;
     n_local = (Real(1) / norm(n_local)) * n_local;
-    P3 n{x.R[0] * n_local.x + x.R[1] * n_local.y + x.R[2] * n_local.z, x.R[3] * n_local.x + x.R[4] * n_local.y + x.R[5] * n_local.z,
+    P3 n{x.R[0] * n_local.x + x.R[1] * n_local.y + x.R[2] * n_local.z,
+         x.R[3] * n_local.x + x.R[4] * n_local.y + x.R[5] * n_local.z,
          x.R[6] * n_local.x + x.R[7] * n_local.y + x.R[8] * n_local.z};
     t.normal = a_sphere ? Real(-1) * n : n;
     // Grazing: the entry is tangent when the approach is nearly perpendicular to the normal.

@@ -48,8 +48,8 @@ inline LQuat qnormalized(LQuat q) {
 // One body's motion over the step, in long double.
 struct LMotion {
     P3 p0, p1;
-    LQuat q0, q1;  // unit; q1 on q0's side (q0.q1 >= 0): the shortest arc
-    Real phi = 0;  // angle between q0 and q1 on the 4D sphere: half the rotation angle
+    LQuat q0, q1;      // unit; q1 on q0's side (q0.q1 >= 0): the shortest arc
+    Real phi = 0;      // angle between q0 and q1 on the 4D sphere: half the rotation angle
     P3 axis{0, 0, 1};  // world rotation axis (unit)
     Real angle = 0;    // rotation per step, in [0, pi]
 
@@ -62,7 +62,8 @@ struct LMotion {
         // The shortest arc: q1 on q0's side. At exactly pi both ways are shortest; the tie follows
         // the sign the library's Motion reads (w of q_end q_start^-1 in double), so both turn
         // the same way.
-        const kairos::Quat rel = e.orientation * kairos::Quat{-s.orientation.x, -s.orientation.y, -s.orientation.z, s.orientation.w};
+        const kairos::Quat rel =
+            e.orientation * kairos::Quat{-s.orientation.x, -s.orientation.y, -s.orientation.z, s.orientation.w};
         const Real side = std::fabs(qdot(q0, q1)) > Real(1e-12) ? qdot(q0, q1) : Real(rel.w);
         if (side < 0) q1 = {-q1.x, -q1.y, -q1.z, -q1.w};
         const LQuat dm{q1.x - q0.x, q1.y - q0.y, q1.z - q0.z, q1.w - q0.w};
@@ -71,8 +72,9 @@ struct LMotion {
         angle = 2 * phi;
         // Axis of q1 q0^-1 (vector part of the relative rotation).
         const LQuat c{-q0.x, -q0.y, -q0.z, q0.w};
-        const LQuat r{q1.w * c.x + q1.x * c.w + q1.y * c.z - q1.z * c.y, q1.w * c.y - q1.x * c.z + q1.y * c.w + q1.z * c.x,
-                      q1.w * c.z + q1.x * c.y - q1.y * c.x + q1.z * c.w, q1.w * c.w - q1.x * c.x - q1.y * c.y - q1.z * c.z};
+        const LQuat r{
+            q1.w * c.x + q1.x * c.w + q1.y * c.z - q1.z * c.y, q1.w * c.y - q1.x * c.z + q1.y * c.w + q1.z * c.x,
+            q1.w * c.z + q1.x * c.y - q1.y * c.x + q1.z * c.w, q1.w * c.w - q1.x * c.x - q1.y * c.y - q1.z * c.z};
         const Real s2 = std::sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
         if (s2 > 0) axis = {r.x / s2, r.y / s2, r.z / s2};
     }
@@ -82,15 +84,16 @@ struct LMotion {
         if (!(phi > 0)) return q0;
         const Real s = std::sin(phi);
         const Real wa = std::sin((1 - t) * phi) / s, wb = std::sin(t * phi) / s;
-        return qnormalized({wa * q0.x + wb * q1.x, wa * q0.y + wb * q1.y, wa * q0.z + wb * q1.z, wa * q0.w + wb * q1.w});
+        return qnormalized(
+            {wa * q0.x + wb * q1.x, wa * q0.y + wb * q1.y, wa * q0.z + wb * q1.z, wa * q0.w + wb * q1.w});
     }
     // Places the body at time t (row-major rotation).
     void place(Body& b, Real t) const {
         const LQuat q = orientation(t);
         const Real xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z, xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
         const Real wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
-        const Real R[9] = {1 - 2 * (yy + zz), 2 * (xy - wz),     2 * (xz + wy),     2 * (xy + wz), 1 - 2 * (xx + zz),
-                           2 * (yz - wx),     2 * (xz - wy),     2 * (yz + wx),     1 - 2 * (xx + yy)};
+        const Real R[9] = {1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy), 2 * (xy + wz),    1 - 2 * (xx + zz),
+                           2 * (yz - wx),     2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)};
         std::copy(R, R + 9, b.R);
         b.t = position(t);
     }
@@ -123,12 +126,18 @@ inline Real rim_distance(Real r, Real h, P3 u) {
 inline Real extreme_radius(const Body& b, P3 u) {
     const Real s = std::sqrt(u.x * u.x + u.y * u.y);
     switch (b.kind) {
-        case Kind::Point: return 0;
-        case Kind::Segment: return b.half * s;
-        case Kind::Sphere: return b.radius;
-        case Kind::Capsule: return b.half * s + b.radius;
-        case Kind::Cylinder: return rim_distance(b.radius, b.half, u);
-        case Kind::Cone: return std::max(b.half * s, rim_distance(b.radius, b.half, u));
+        case Kind::Point:
+            return 0;
+        case Kind::Segment:
+            return b.half * s;
+        case Kind::Sphere:
+            return b.radius;
+        case Kind::Capsule:
+            return b.half * s + b.radius;
+        case Kind::Cylinder:
+            return rim_distance(b.radius, b.half, u);
+        case Kind::Cone:
+            return std::max(b.half * s, rim_distance(b.radius, b.half, u));
         case Kind::Box:
         case Kind::Hull: {
             Real m = 0;
@@ -231,8 +240,10 @@ struct Pair {
             if (cast_oracle::norm(q - p) > 0)
                 for (int i = 0; i < 120 && hi - lo > Real(1e-18); ++i) {
                     const Real m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-                    if (f(m1) <= f(m2)) hi = m2;
-                    else lo = m1;
+                    if (f(m1) <= f(m2))
+                        hi = m2;
+                    else
+                        lo = m1;
                 }
             const Real best = std::min({f(0), f(1), f((lo + hi) / 2)});
             return std::max(best - r, Real(0));
@@ -278,7 +289,8 @@ struct Pair {
                 best = std::max(best, sep(c, g));
                 a = Real(-1) * g;
             }
-            const Real pa3[3] = {P[0][0] * a.x + P[0][1] * a.y + P[0][2] * a.z, P[1][0] * a.x + P[1][1] * a.y + P[1][2] * a.z,
+            const Real pa3[3] = {P[0][0] * a.x + P[0][1] * a.y + P[0][2] * a.z,
+                                 P[1][0] * a.x + P[1][1] * a.y + P[1][2] * a.z,
                                  P[2][0] * a.x + P[2][1] * a.y + P[2][2] * a.z};
             const Real apa = a.x * pa3[0] + a.y * pa3[1] + a.z * pa3[2];
             if (!(apa > 0)) break;
@@ -295,9 +307,9 @@ struct Pair {
     bool uses_gjk() const { return !is_core(a.kind) && !is_core(b.kind) && !(is_poly(a.kind) && is_poly(b.kind)); }
 
     struct Contact {
-        bool decided = true;   // false when the step budget ran out before a verdict
+        bool decided = true;  // false when the step budget ran out before a verdict
         bool hit = false;
-        Real toi = 1;          // first sample with d <= eps * size (no contact before it)
+        Real toi = 1;  // first sample with d <= eps * size (no contact before it)
         Real min_distance = std::numeric_limits<Real>::infinity();  // smallest sampled distance
         int steps = 0;
     };

@@ -33,14 +33,15 @@ inline Real norm(P3 a) { return std::sqrt(dot(a, a)); }
 struct Polytope {
     std::vector<P3> v;
     std::vector<std::array<int, 3>> faces;
-    std::vector<P3> normals;     // unit, outward
-    std::vector<Real> offsets;   // normal . x <= offset inside
+    std::vector<P3> normals;    // unit, outward
+    std::vector<Real> offsets;  // normal . x <= offset inside
     std::vector<std::array<int, 2>> edges;
-    Real scale = 0;              // largest |coordinate| (for tolerances)
+    Real scale = 0;  // largest |coordinate| (for tolerances)
 };
 
 // Maps local vertices by x -> R x + t in long double (R row-major, as given to the library).
-inline std::vector<P3> transform(const std::vector<std::array<double, 3>>& local, const double r[9], const double t[3]) {
+inline std::vector<P3> transform(const std::vector<std::array<double, 3>>& local, const double r[9],
+                                 const double t[3]) {
     std::vector<P3> out;
     out.reserve(local.size());
     for (const auto& p : local) {
@@ -146,8 +147,8 @@ inline Real segment_segment_sq(P3 p1, P3 q1, P3 p2, P3 q2) {
 }
 
 struct Result {
-    Real distance = 0;     // 0 when intersecting
-    Real depth = 0;        // penetration depth (minimum SAT overlap), 0 when separated
+    Real distance = 0;  // 0 when intersecting
+    Real depth = 0;     // penetration depth (minimum SAT overlap), 0 when separated
     bool intersecting = false;
 };
 
