@@ -26,8 +26,8 @@
  * successful call never returns NaN or infinity. Directions (kairos_shape_support) may have any
  * finite length.
  *
- * Extensible input structs (kairos_query_settings, kairos_world_settings, kairos_step_stats)
- * start with uint32_t struct_size and are passed by pointer only. Fill them with their
+ * Extensible input structs (kairos_query_settings, kairos_world_settings) start with
+ * uint32_t struct_size and are passed by pointer only. Fill them with their
  * kairos_*_init function, which sets struct_size and the library's defaults. Fields are only
  * ever appended. The library accepts any struct_size from the first published size up: a
  * larger size (a caller built against a newer header) is accepted when every byte past the
@@ -42,7 +42,8 @@
  * Result structs (kairos_distance_result, kairos_cast_result, kairos_contact) are frozen: no
  * struct_size, layout fixed for the major version. Growth goes through new functions with new
  * result structs. kairos_step_stats is the one growing output: the library writes at most
- * out->struct_size bytes of it.
+ * out->struct_size bytes of it (any size from 4 up: an older caller gets the fields it knows;
+ * below 4, KAIROS_ERROR_STRUCT_SIZE).
  *
  * Threads. Shapes are immutable once made: any number of threads may query them at once, and
  * retain/release are atomic. A world is used by one thread at a time (no internal locking).
@@ -93,7 +94,7 @@ extern "C" {
 
 /* Which rule ended an iteration (distance_result.termination, cast_result.termination).
  * See docs/algorithms.md section 2 for the rules. */
-#define KAIROS_TERMINATION_NONE              0  /* no iteration was needed (e.g. a zero-length ray) */
+#define KAIROS_TERMINATION_NONE              0  /* not reported by this version: every query runs at least one iteration */
 #define KAIROS_TERMINATION_RELATIVE_ERROR    1  /* ||v||^2 - v.w <= tolerance * ||v||^2 (distance within tolerance) */
 #define KAIROS_TERMINATION_NEAR_CONTACT      2  /* ||v||^2 <= eps * max ||y||^2: touching within rounding */
 #define KAIROS_TERMINATION_FULL_SIMPLEX      3  /* the simplex holds the origin: the shapes intersect */
@@ -308,7 +309,7 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
  * relative velocity of the contact point. Motions whose start and end orientations are equal
  * (q or -q) take the exact shape cast. iterations: GJK support evaluations of all the distance
  * queries and casts used. termination: HIT, SEPARATED (no hit), or MAX_ITERATIONS / NO_PROGRESS
- * when a guard stopped the search: still a hit at a time before which there is no contact, but
+ * when a guard stopped the search (a motion that does not turn reports its shape cast's rule): still a hit at a time before which there is no contact, but
  * the shapes may be apart there (a near miss grazed for thousands of steps, or curved surfaces
  * closer than double precision resolves, about 1e-7 of their size). */
 KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion* motion_a,
