@@ -4,12 +4,14 @@
 # RelWithDebInfo flags), runs Kairos over tolerances 1e-1 .. 1e-12 with Bullet f64 and FCL
 # conservative advancement in one program, and Bullet f32 in its own, then draws the chart.
 #   scripts/cast-chart.sh            -> bench/results/cast.csv, bench/results/cast-chart.png
+#   KAIROS_RESULTS_DIR=dir scripts/cast-chart.sh   -> dir/cast.csv, dir/cast-chart.png (the demo
+#                                       writes under build/ and leaves the committed results alone)
 # Needs: Google Benchmark, FCL, Bullet (float and double builds), gnuplot (Debian: gnuplot-nox).
 # The machines are shared and noisy: compare within one run (the CSV), not across runs.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${KAIROS_BENCH_BUILD:-$root/build/cast-bench}
-results=$root/bench/results
+results=${KAIROS_RESULTS_DIR:-$root/bench/results}
 mkdir -p "$results"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKAIROS_BUILD_BENCH=ON -DKAIROS_ABI_CHECK=OFF >/dev/null
 cmake --build "$build" --target bench_cast bench_cast_bullet32 -j2 >/dev/null

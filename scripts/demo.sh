@@ -3,7 +3,8 @@
 # Quick start, the main job: install missing Debian packages, build Kairos (release preset), run
 # the demo (fast and spinning objects that tunnel between frames, and their times of impact),
 # step the scene of a few thousand objects (picture: build/demo/kairos_scene.png or .ppm), and
-# regenerate the shape-cast accuracy/speed chart (bench/results/cast-chart.png).
+# draw the shape-cast accuracy/speed chart from a fresh run (build/demo/cast-chart.png; the
+# committed bench/results/ are never rewritten).
 #
 # Usage: bash scripts/demo.sh   (as root on Debian 12 it installs what is missing; as another
 # user it prints the apt-get line to run first). KAIROS_DEMO_NO_CHART=1 skips the chart.
@@ -37,6 +38,6 @@ build/release/examples/kairos_scene 30 build/demo/kairos_scene
 if [ "${KAIROS_DEMO_NO_CHART:-0}" != 1 ]; then
     echo
     echo "==== 3. Regenerating the shape-cast accuracy/speed chart (about a minute) ===="
-    bash scripts/cast-chart.sh
-    echo "chart: bench/results/cast-chart.png (data: bench/results/cast.csv)"
+    KAIROS_RESULTS_DIR="$PWD/build/demo" bash scripts/cast-chart.sh
+    echo "chart: build/demo/cast-chart.png (data: build/demo/cast.csv; the committed run is bench/results/)"
 fi
