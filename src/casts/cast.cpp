@@ -2,18 +2,10 @@
 // GJK ray cast and shape cast loops, instantiated per pair of support kinds (no virtual call, no
 // allocation). Shape casts run in A's local frame; results go back to the world frame.
 //
-// The simplex after a clip (docs/algorithms.md §3 allows both): kept and re-expressed about the new
-// ray point (ClipPolicy::Keep, the default) or restarted from the last support point (Restart).
-// Measured by bench/bench_cast on its fixed sets of 512 casts (bench/results/cast.csv, one run,
-// median ns per cast / mean iterations, Keep against Restart):
-//   tolerance        1e-4                      1e-7                      1e-10
-//   box/box          541 / 4.90  vs  880 / 10.4    536 / 4.92  vs  886 / 10.4    538 / 4.92  vs  885 / 10.4
-//   hull32/hull32    931 / 5.56  vs 1765 / 14.5    906 / 5.56  vs 1777 / 14.5    908 / 5.56  vs 1778 / 14.5
-//   cylinder/cone   1209 / 8.47  vs 2300 / 35.2   1694 / 12.9  vs 3498 / 76.5   1967 / 17.5  vs 4598 / 106
-//   capsule/hull32   361 / 3.87  vs  384 / 6.25    401 / 4.16  vs  411 / 6.93    436 / 4.31  vs  458 / 7.23
-// Keeping the simplex takes 1.5-6x fewer iterations and up to 2.3x less time, although each clip
-// recomputes every determinant of the kept points; both policies agree with the oracle (Restart
-// only to 1e-6 on curved shapes, where at 1e-10 it reached the iteration cap with poor simplices).
+// After a clip the simplex is kept and re-expressed about the new ray point (docs/algorithms.md §3
+// allows restarting it from the last support point too). Restarting was measured by bench_cast
+// (the kairos_restart rows of bench/results/cast.csv) at 1.5-6x the iterations and up to 2.3x the
+// time, and it reached the iteration cap on curved shapes at tolerance 1e-10; it was removed.
 #include "casts/cast.hpp"
 #include "gjk/support_kernels.hpp"
 
@@ -21,12 +13,10 @@
 #include <cmath>
 
 namespace kairos {
-namespace cast_detail {
+namespace {
 using namespace kernels;
 
 using gjk_detail::Simplex;
-
-namespace {
 
 // Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
 // current), then the backup pass: the subset with positive determinants whose affine closest
@@ -78,8 +68,9 @@ Simplex::Outcome check_full(Simplex& s) {
     return johnson_proper(s, 15u);
 }
 
-}  // namespace
-
+// Re-expresses the simplex about the ray point x: y_i = x - (pa_i - pb_i) for its points, plus the
+// point (a, b) when `add` is set; recomputes every dot product and determinant, and runs Johnson's
+// test over all subsets (the closest sub-simplex need not hold the newest point once x has moved).
 Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
     unsigned all = s.bits;
     if (add) {
@@ -103,8 +94,6 @@ Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
     }
     return johnson_proper(s, all);
 }
-
-namespace {
 
 // C = one shape (ray cast): p = s(d); b is zero. `scale` as in PairSupport.
 template <class S>
@@ -130,8 +119,7 @@ Vec3 abs_max(Vec3 a, Vec3 b) {
 // that scale, stay finite).
 double cast_scale(Vec3 a, Vec3 b, Vec3 x, Vec3 r) {
     double sc = pair_scale(a, abs_max(b, x));
-    const Vec3 m = abs_max(r, Vec3{});
-    const double rmax = std::fmax(m.x, std::fmax(m.y, m.z));
+    const double rmax = max_abs(r);
     while (sc > 1 && !(rmax * sc <= 0x1p400)) sc = std::fmax(1.0, sc * 0x1p-100);
     return sc;
 }
@@ -186,211 +174,225 @@ struct LocalCast {
     Termination termination;
 };
 
-// Ray x(lambda) = s + lambda r against C (+ a ball of radius `margin`), C given by `sup`.
-// v0: the first search direction (x - some point of C, any non-zero vector works).
-// The loop runs at the scale cast_scale picks after the first support (sup by value: its scale is
+// Ray x(lambda) = s + lambda r against C (+ a ball of radius `margin`), C given by `sup`: the
+// iteration of docs/algorithms.md §3 with its guards. One object per cast; run() once.
+// The loop runs at the scale cast_scale picks after the first support (sup is a copy: its scale is
 // set then); lambda does not depend on it, and the result's v and points are at the caller's.
 template <class Support>
-LocalCast cast_loop(Support sup, double margin, Vec3 s, Vec3 r, Vec3 v0, double tolerance, uint32_t max_iterations,
-                    ClipPolicy policy) {
-    // Only v0's direction matters: brought to about unit length (exact) so its products neither
-    // underflow nor overflow.
-    v0 = pair_scale(v0, Vec3{}) * v0;
-    Simplex sx;
-    double lambda = 0;
-    Vec3 x = s;
-    Vec3 v = v0;
-    Vec3 normal{};
-    bool clipped = false;
-    bool moved = true;      // x moved since the last add (nothing added yet counts as moved)
-    int restarts_left = 2;  // restarts of the simplex by the guards (Johnson failure, stalls)
-    // Below this ||v|| relative to the simplex's size a stall is convergence (curved surfaces stall
-    // near 1e-7 in double precision); above it the simplex is restarted.
-    constexpr double kLoose = 1e-6;
-    double vv = INFINITY;       // ||v||^2 of the current simplex estimate
-    double best_vv = INFINITY;  // smallest ||v||^2 since the last clip
-    int stalled = 0;            // estimates in a row, since then, that did not improve on it
-    constexpr int kStall = 4;
-    // Below 64 ulp of the simplex's size v carries no digit: the tolerance is clamped there.
-    const double eps_sq = std::fmax(tolerance * tolerance, gjk_detail::kNearContact);
-    const double eps = std::sqrt(eps_sq);
+class CastLoop {
+  public:
+    CastLoop(Support sup, double margin, Vec3 s, Vec3 r, double tolerance)
+        : sup_(sup),
+          margin_(margin),
+          s_(s),
+          r_(r),
+          x_(s),
+          // Below 64 ulp of the simplex's size v carries no digit: the tolerance is clamped there.
+          eps_sq_(std::fmax(tolerance * tolerance, gjk_detail::kNearContact)),
+          eps_(std::sqrt(eps_sq_)) {}
 
-    LocalCast out{};
-    out.hit = true;  // every exit except the two miss tests leaves lambda as a lower bound of a hit
-    out.termination = Termination::MaxIterations;
-    uint32_t it = 0;
-    while (it < max_iterations) {
-        Vec3 a, b;
-        Vec3 p = sup(v, a, b);
-        if (it == 0) {
-            const double sc = cast_scale(a, b, x, r);
-            if (sc != 1) {
-                sup.scale = sc;
-                a = sc * a;
-                b = sc * b;
-                p = a - b;
-                s = sc * s;
-                r = sc * r;
-                x = s;
-                margin *= sc;
-            }
-        }
-        ++it;
-        Vec3 w = x - p;
-        const double vw = dot(v, w);
-        // With a margin the support plane of the rounded C is offset by margin along v.
-        const double offset = margin > 0 ? margin * std::sqrt(dot(v, v)) : 0.0;
-        if (vw > offset) {  // the plane separates x from C: clip (NaN fails and does not clip)
-            const double vr = dot(v, r);
-            if (!(vr < 0)) {  // x moves away from (or along) the plane: the ray misses
-                out.hit = false;
-                out.termination = Termination::Separated;
+    // v0: the first search direction (x - some point of C; any non-zero vector works).
+    LocalCast run(Vec3 v0, uint32_t max_iterations) {
+        // Only v0's direction matters: brought to about unit length (exact) so its products
+        // neither underflow nor overflow.
+        v_ = pair_scale(v0, Vec3{}) * v0;
+        // Every exit but a miss leaves lambda as a lower bound of a hit.
+        Termination stop = Termination::MaxIterations;
+        uint32_t it = 0;
+        while (it < max_iterations) {
+            Vec3 a, b;
+            Vec3 p = sup_(v_, a, b);
+            if (it == 0) adopt_first_scale(a, b, p);
+            ++it;
+            Vec3 w = x_ - p;
+            if (!clip(p, w)) {
+                stop = Termination::Separated;
                 break;
             }
-            lambda -= (vw - offset) / vr;
-            if (!(lambda <= 1)) {
-                out.hit = false;
-                out.termination = Termination::Separated;
-                break;
-            }
-            const Vec3 x_new = s + lambda * r;
-            normal = v;
-            clipped = true;
-            // A clip that leaves x where it was (the step is below rounding) is not a move: the
-            // iteration goes on about the same point, and its guards (rules 5 and 6) apply.
-            if (!(x_new == x)) {
-                x = x_new;
-                w = x - p;
-                moved = true;
-                if (policy == ClipPolicy::Restart) {
-                    sx.bits = 0;
-                    sx.last_all = 0;
-                }
-            }
+            stop = step(w, a, b, p);
+            if (stop != Termination::None) break;
+            stop = Termination::MaxIterations;
         }
+        return result(stop, it);
+    }
 
-        // A guard fired (rule 5, rule 6, or a stall) while ||v|| is still large: the simplex went
-        // bad by rounding (near-duplicate or coplanar points), so x's status is unknown. Restart
-        // from the newest support point while the budget lasts; a small ||v|| is convergence.
-        auto restart = [&](double norm_sq) {
-            if (restarts_left == 0 || norm_sq <= kLoose * kLoose * sx.max_norm_sq()) return false;
-            --restarts_left;
-            sx.bits = 0;
-            sx.last_all = 0;
-            return true;
-        };
+  private:
+    void adopt_first_scale(Vec3& a, Vec3& b, Vec3& p) {
+        const double sc = cast_scale(a, b, x_, r_);
+        if (sc == 1) return;
+        adopt_scale(sup_, sc, a, b, margin_);
+        p = a - b;
+        s_ = sc * s_;
+        r_ = sc * r_;
+        x_ = s_;
+    }
 
+    // The support plane through p (offset by the margin along v) is tested against x. When it
+    // separates x from C it clips: lambda advances to where the ray crosses it, and w follows x.
+    // False when the ray misses C (x moves away from the plane, or crosses it past lambda = 1).
+    bool clip(Vec3 p, Vec3& w) {
+        const double vw = dot(v_, w);
+        const double offset = margin_ > 0 ? margin_ * std::sqrt(dot(v_, v_)) : 0.0;
+        if (!(vw > offset)) return true;  // NaN fails and does not clip
+        const double vr = dot(v_, r_);
+        if (!(vr < 0)) return false;
+        lambda_ -= (vw - offset) / vr;
+        if (!(lambda_ <= 1)) return false;
+        const Vec3 x_new = s_ + lambda_ * r_;
+        normal_ = v_;
+        clipped_ = true;
+        // A clip that leaves x where it was (the step is below rounding) is not a move: the
+        // iteration goes on about the same point, and its guards (rules 5 and 6) apply.
+        if (!(x_new == x_)) {
+            x_ = x_new;
+            w = x_ - p;
+            moved_ = true;
+        }
+        return true;
+    }
+
+    // A guard fired (rule 5, rule 6, or a stall) while ||v|| is still large: the simplex went bad
+    // by rounding (near-duplicate or coplanar points), so x's status is unknown. Empties the
+    // simplex (the caller adds the newest support point) while the budget lasts; a small ||v|| is
+    // convergence.
+    bool restart(double norm_sq) {
+        if (restarts_left_ == 0 || norm_sq <= kLoose * kLoose * sx_.max_norm_sq()) return false;
+        --restarts_left_;
+        sx_.bits = 0;
+        sx_.last_all = 0;
+        return true;
+    }
+
+    // A support point equal to a kept one, or within rounding of it, adds nothing but degeneracy.
+    bool known(Vec3 a, Vec3 b, Vec3 p) const {
+        const double close_sq = 1e-24 * sx_.max_norm_sq();
+        for (unsigned q = sx_.bits; q; q &= q - 1) {
+            const int i = std::countr_zero(q);
+            const Vec3 d = (sx_.pa[i] - sx_.pb[i]) - p;
+            if ((sx_.pa[i] == a && sx_.pb[i] == b) || dot(d, d) <= close_sq) return true;
+        }
+        return false;
+    }
+
+    // Puts w = x - p (p = a - b) into the simplex, then applies the stopping rules. Returns the
+    // termination, or None to go on with the next search direction v_.
+    Termination step(Vec3 w, Vec3 a, Vec3 b, Vec3 p) {
         Simplex::Outcome o;
-        if (!moved && sx.contains(w) && sx.refine_dropped()) {
-            // The point came back because rounding dropped it: the simplex now holds the nearer
-            // face found geometrically, and the iteration goes on from its estimate. Each success
-            // shrinks ||v|| by more than rounding, so this cannot cycle (and the iteration cap holds).
-            vv = dot(sx.v, sx.v);
-            v = sx.v;
-            continue;
-        } else if (!moved && sx.contains(w)) {
+        if (!moved_ && sx_.contains(w)) {
+            if (sx_.refine_dropped()) {
+                // The point came back because rounding dropped it: the simplex now holds the
+                // nearer face found geometrically, and the iteration goes on from its estimate.
+                // Each success shrinks ||v|| by more than rounding, so this cannot cycle (and the
+                // iteration cap holds).
+                vv_ = dot(sx_.v, sx_.v);
+                v_ = sx_.v;
+                return Termination::None;
+            }
             // Rule 5 (only while x stays put: after a clip a known point is new information).
-            if (!restart(vv)) {
-                out.termination = Termination::RepeatedSupport;
-                break;
-            }
-            o = sx.add(w, a, b, INFINITY);
-            moved = true;  // a fresh simplex: its first estimate is not compared with the last
-        } else if (!moved) {
-            o = sx.add(w, a, b, vv);
-        } else if (policy == ClipPolicy::Keep && sx.bits != 0) {
-            // A point equal to a kept one, or within rounding of it, adds nothing but degeneracy.
-            bool known = false;
-            const double close_sq = 1e-24 * sx.max_norm_sq();
-            for (unsigned q = sx.bits; q; q &= q - 1) {
-                const int i = std::countr_zero(q);
-                const Vec3 d = (sx.pa[i] - sx.pb[i]) - p;
-                if ((sx.pa[i] == a && sx.pb[i] == b) || dot(d, d) <= close_sq) known = true;
-            }
-            o = rebuild(sx, x, !known, a, b);
+            if (!restart(vv_)) return Termination::RepeatedSupport;
+            o = sx_.add(w, a, b, INFINITY);
+            moved_ = true;  // a fresh simplex: its first estimate is not compared with the last
+        } else if (!moved_) {
+            o = sx_.add(w, a, b, vv_);
+        } else if (sx_.bits != 0) {
+            o = rebuild(sx_, x_, !known(a, b, p), a, b);
         } else {
-            sx.bits = 0;
-            o = sx.add(w, a, b, INFINITY);
+            o = sx_.add(w, a, b, INFINITY);
         }
         // Near-duplicate support points (a rim point found again from a direction one ulp away)
         // make the simplex degenerate: its barycentric coordinates blow up (+-1e14 seen) and v is
         // then a point off the simplex, short enough to fake a hit. Treated as a Johnson failure.
-        if ((o == Simplex::Outcome::Reduced || o == Simplex::Outcome::Backup) && !coordinates_sane(sx))
+        if ((o == Simplex::Outcome::Reduced || o == Simplex::Outcome::Backup) && !coordinates_sane(sx_))
             o = Simplex::Outcome::Failed;
         if (o == Simplex::Outcome::Failed) {
             // No valid sub-simplex even after the backup pass: restart from the newest point.
-            if (restarts_left == 0) {
-                out.termination = Termination::JohnsonFailed;
-                break;
-            }
-            --restarts_left;
-            sx.bits = 0;
-            o = sx.add(w, a, b, INFINITY);
-            moved = true;
+            if (restarts_left_ == 0) return Termination::JohnsonFailed;
+            --restarts_left_;
+            sx_.bits = 0;
+            o = sx_.add(w, a, b, INFINITY);
+            moved_ = true;
         }
         if (o == Simplex::Outcome::Full) {  // x lies inside the core
-            out.termination = Termination::FullSimplex;
-            if (clipped) on_boundary_face(sx);
-            vv = 0;
-            break;
+            if (clipped_) on_boundary_face(sx_);
+            return Termination::FullSimplex;
         }
-        const double nv = dot(sx.v, sx.v);
-        const double size_sq = sx.max_norm_sq();
-        if (margin > 0 ? std::sqrt(nv) - margin <= eps * std::sqrt(size_sq) : nv <= eps_sq * size_sq) {
-            out.termination = Termination::Hit;
-            vv = nv;
-            break;
+        const double nv = dot(sx_.v, sx_.v);
+        const double size_sq = sx_.max_norm_sq();
+        if (margin_ > 0 ? std::sqrt(nv) - margin_ <= eps_ * std::sqrt(size_sq) : nv <= eps_sq_ * size_sq)
+            return Termination::Hit;
+        if (no_progress(nv)) {
+            if (!restart(nv)) return Termination::NoProgress;
+            sx_.add(w, a, b, INFINITY);
+            best_vv_ = INFINITY;
+            stalled_ = 0;
+            vv_ = dot(sx_.v, sx_.v);
+            v_ = sx_.v;
+            return Termination::None;
         }
-        // Rule 6 while x stays put: GJK about a fixed point has converged to rounding. On curved
-        // shapes rounding can also make ||v|| wander without a clip: kStall estimates in a row that
-        // do not improve on the best since the last clip end the iteration the same way.
-        bool no_progress = false;
-        if (!moved && vv - nv <= gjk_detail::kNoProgress * vv) no_progress = true;
-        if (moved || nv < best_vv) {
-            best_vv = nv;
-            stalled = 0;
-        } else if (++stalled >= kStall) {
-            no_progress = true;
-        }
-        if (no_progress) {
-            if (!restart(nv)) {
-                out.termination = Termination::NoProgress;
-                vv = nv;
-                break;
-            }
-            o = sx.add(w, a, b, INFINITY);
-            best_vv = INFINITY;
-            stalled = 0;
-            vv = dot(sx.v, sx.v);
-            v = sx.v;
-            continue;
-        }
-        moved = false;
-        vv = nv;
-        v = sx.v;
+        moved_ = false;
+        vv_ = nv;
+        v_ = sx_.v;
+        return Termination::None;
     }
-    (void)vv;
-    out.iterations = it;
-    out.lambda = lambda;
-    out.clipped = clipped;
-    out.normal = normal;
-    out.v = sx.bits != 0 ? sx.v : v;
-    if (sx.bits != 0) {
-        sx.closest_points(out.point_a, out.point_b);
-        out.size = std::sqrt(sx.max_norm_sq());
-    } else {
-        out.point_a = out.point_b = Vec3{};
-        out.size = 0;
+
+    // Rule 6 while x stays put: GJK about a fixed point has converged to rounding. On curved
+    // shapes rounding can also make ||v|| wander without a clip: kStall estimates in a row that do
+    // not improve on the best since the last clip end the iteration the same way.
+    bool no_progress(double nv) {
+        bool stop = !moved_ && vv_ - nv <= gjk_detail::kNoProgress * vv_;
+        if (moved_ || nv < best_vv_) {
+            best_vv_ = nv;
+            stalled_ = 0;
+        } else if (++stalled_ >= kStall) {
+            stop = true;
+        }
+        return stop;
     }
-    if (sup.scale != 1) {
-        const double inv = 1 / sup.scale;  // exact: a power of two within 2^+-1000
-        out.size *= inv;
-        out.v = inv * out.v;
-        out.point_a = inv * out.point_a;
-        out.point_b = inv * out.point_b;
+
+    LocalCast result(Termination stop, uint32_t iterations) const {
+        LocalCast out{};
+        out.hit = stop != Termination::Separated;
+        out.termination = stop;
+        out.iterations = iterations;
+        out.lambda = lambda_;
+        out.clipped = clipped_;
+        out.normal = normal_;
+        out.v = sx_.bits != 0 ? sx_.v : v_;
+        if (sx_.bits != 0) {
+            sx_.closest_points(out.point_a, out.point_b);
+            out.size = std::sqrt(sx_.max_norm_sq());
+        }
+        if (sup_.scale != 1) {
+            const double inv = 1 / sup_.scale;  // exact: a power of two within 2^+-1000
+            out.size *= inv;
+            out.v = inv * out.v;
+            out.point_a = inv * out.point_a;
+            out.point_b = inv * out.point_b;
+        }
+        return out;
     }
-    return out;
-}
+
+    // Below this ||v|| relative to the simplex's size a stall is convergence (curved surfaces
+    // stall near 1e-7 in double precision); above it the simplex is restarted.
+    static constexpr double kLoose = 1e-6;
+    static constexpr int kStall = 4;
+
+    Support sup_;
+    double margin_;  // at the loop's scale, as s_, r_, x_ and every point of the simplex
+    Vec3 s_, r_;     // the ray's start and motion
+    Vec3 x_;         // the ray point s + lambda r
+    const double eps_sq_, eps_;
+    double lambda_ = 0;
+    Vec3 v_;                    // search direction: x minus the simplex's closest point
+    Vec3 normal_{};             // v of the latest clip (not unit)
+    bool clipped_ = false;      // a clip happened: normal_ holds its plane's normal
+    bool moved_ = true;         // x moved since the last add (nothing added yet counts as moved)
+    int restarts_left_ = 2;     // restarts of the simplex by the guards (Johnson failure, stalls)
+    double vv_ = INFINITY;      // ||v||^2 of the current simplex estimate
+    double best_vv_ = INFINITY; // smallest ||v||^2 since the last clip
+    int stalled_ = 0;           // estimates in a row, since then, that did not improve on it
+    Simplex sx_;
+};
 
 // The normal of the latest clipping plane. With a radius the final v (x minus the core's closest
 // point, about the radius long) is the normal of the rounded shape's support plane through the
@@ -417,10 +419,8 @@ Vec3 first_direction(Vec3 r, Vec3 toward_x) {
     return {1, 0, 0};
 }
 
-}  // namespace
-
 // The part of a result both casts fill alike: iterations, termination, hit, and toi (1 on a miss).
-static CastResult result_head(const LocalCast& l) {
+CastResult result_head(const LocalCast& l) {
     CastResult out;
     out.iterations = l.iterations;
     out.termination = l.termination;
@@ -429,15 +429,17 @@ static CastResult result_head(const LocalCast& l) {
     return out;
 }
 
+}  // namespace
+
 CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
-                    uint32_t max_iterations, ClipPolicy policy) {
+                    uint32_t max_iterations) {
     if (max_iterations == 0) max_iterations = 1;
     const Vec3 s = pose.apply_inverse(origin);
     const Vec3 r = pose.to_local_direction(translation);
     const CoreOf c = classify(shape);
     const LocalCast l = with_support(c, [&](auto core) {
-        return cast_loop(SingleSupport<decltype(core)>{core}, c.radius, s, r, first_direction(r, s), tolerance,
-                         max_iterations, policy);
+        return CastLoop(SingleSupport<decltype(core)>{core}, c.radius, s, r, tolerance)
+            .run(first_direction(r, s), max_iterations);
     });
     CastResult out = result_head(l);
     if (!l.hit) return out;
@@ -453,8 +455,7 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
 }
 
 CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
-                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
-                      ClipPolicy policy) {
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const RelativeFrame frame = relative_frame(pose_a, pose_b);
@@ -466,8 +467,8 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     const double margin = ca.radius + cb.radius;
     const LocalCast l = with_support(ca, [&](auto sa) {
         return with_support(cb, [&](auto sb) {
-            return cast_loop(PairSupport<decltype(sa), decltype(sb)>{sa, sb, rot, t}, margin, Vec3{}, r,
-                             first_direction(r, t), tolerance, max_iterations, policy);
+            return CastLoop(PairSupport<decltype(sa), decltype(sb)>{sa, sb, rot, t}, margin, Vec3{}, r, tolerance)
+                .run(first_direction(r, t), max_iterations);
         });
     });
     CastResult out = result_head(l);
@@ -483,19 +484,6 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     out.normal = pose_a.rotation * n;
     out.point = pose_a.apply(0.5 * (pa + pb));
     return out;
-}
-
-}  // namespace cast_detail
-
-CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
-                    uint32_t max_iterations) {
-    return cast_detail::ray_cast(s, pose, origin, translation, tolerance, max_iterations, cast_detail::kDefaultPolicy);
-}
-
-CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
-                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations) {
-    return cast_detail::shape_cast(a, pose_a, translation_a, b, pose_b, translation_b, tolerance, max_iterations,
-                                   cast_detail::kDefaultPolicy);
 }
 
 }  // namespace kairos

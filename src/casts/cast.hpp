@@ -46,24 +46,4 @@ CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 tra
 CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
                       const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations);
 
-namespace cast_detail {
-
-// What happens to the simplex when the ray point moves (a clip). Keep: the points stay and are
-// re-expressed about the new ray point (dot products and determinants recomputed). Restart: the
-// simplex restarts from the last support point. See cast.cpp for the measurement behind the choice.
-enum class ClipPolicy { Keep, Restart };
-inline constexpr ClipPolicy kDefaultPolicy = ClipPolicy::Keep;
-
-CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
-                    uint32_t max_iterations, ClipPolicy policy);
-CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
-                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
-                      ClipPolicy policy);
-
-// Re-expresses the simplex about the ray point x: y_i = x - (pa_i - pb_i) for its points, plus the
-// point (a, b) when `add` is set; recomputes every dot product and determinant, and runs Johnson's
-// test over all subsets (the closest sub-simplex need not hold the newest point once x has moved).
-gjk_detail::Simplex::Outcome rebuild(gjk_detail::Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b);
-
-}  // namespace cast_detail
 }  // namespace kairos

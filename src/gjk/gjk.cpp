@@ -66,11 +66,8 @@ template <class Pair>
 inline void set_scale(Pair& pair, Vec3& a, Vec3& b, Vec3& w, double& margin, double& margin_sq) {
     const double sc = pair_scale(a, b);
     if (sc == 1) return;
-    pair.scale = sc;
-    a = sc * a;
-    b = sc * b;
+    adopt_scale(pair, sc, a, b, margin);
     w = a - b;
-    margin *= sc;
     margin_sq = margin * margin;
 }
 

@@ -106,6 +106,16 @@ inline double pair_scale(Vec3 a, Vec3 b) {
     return std::ldexp(1.0, e);
 }
 
+// Brings a loop to the scale `sc` after its first support call: the support functor scales every
+// later point itself; the first points and the margin are scaled here (exact: a power of two).
+template <class Support>
+inline void adopt_scale(Support& sup, double sc, Vec3& a, Vec3& b, double& margin) {
+    sup.scale = sc;
+    a = sc * a;
+    b = sc * b;
+    margin *= sc;
+}
+
 enum class Core { Point, Segment, Box, SmallHull, Generic };
 
 // A shape as a core plus a radius: `shape` is the core's shape (the shape itself, or the operand

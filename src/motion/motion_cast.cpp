@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Motion cast: conservative advancement, with disk bounds and bisection as the fallback (see
-// motion_cast.hpp and docs/algorithms.md §4). No heap
-// allocation: the fattened shapes live on the stack for one window each.
+// Motion cast: conservative advancement, with disk bounds and bisection where it cannot advance
+// (see motion_cast.hpp and docs/algorithms.md §4). No heap allocation: the fattened shapes live on
+// the stack for one window each.
 #include "motion/motion_cast.hpp"
 
 #include <cmath>
@@ -17,15 +17,12 @@ namespace motion_detail {
 // - kWindow: a window starts no longer than the time in which the two disks could grow to
 //   kWindow times the current distance (rho |angle| per step bounds the growth rate). 2 doubled
 //   the casts (the fattened shapes touch at once and get halved); 0.5 and 1 were alike.
-// - kCastWorth (Hybrid): the fattened cast runs only when its window is this many times longer
-//   than the advancement step.
 // - kCastSlack: a fattened cast stops once its ray point is within this fraction of the distance
 //   (never looser than kMaxCastTolerance, relative): finer is wasted on a loose bound, coarser
 //   would read the fattened shapes as touching at the start.
 // - kLoopDistanceTolerance: relative error of the distance queries inside the loop; the final one
 //   runs at the caller's tolerance when that is finer.
 inline constexpr double kWindow = 1.0;
-inline constexpr double kCastWorth = 3.0;
 // A cast that has not settled by then is read as touching (halve the window): fattened shapes
 // that overlap make GJK crawl over the disk's flat, coplanar support points.
 inline constexpr uint32_t kMaxCastIterations = 64;
@@ -136,12 +133,255 @@ CastResult fattened_cast(const Body& x, const Transform& px, double rx, Vec3 tx,
     return shape_cast(sx, px, tx, sy, py, ty, tolerance, max_iterations);
 }
 
+// The loop over windows of one rotating pair (at least one motion turns); run() once.
+class MotionCaster {
+  public:
+    MotionCaster(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
+                 uint32_t max_iterations, double size, double radii, MotionCastStats& stats)
+        : a_(a),
+          b_(b),
+          ma_(ma),
+          mb_(mb),
+          body_a_(a, ma),
+          body_b_(b, mb),
+          tolerance_(tolerance),
+          max_iterations_(max_iterations),
+          size_(size),
+          radii_(radii),
+          delta_(tolerance * size),
+          rate_(body_a_.rate() + body_b_.rate()),
+          loop_tolerance_(std::fmax(tolerance, kLoopDistanceTolerance)),
+          linear_rel_(mb.linear() - ma.linear()),
+          speed_bound_(length(linear_rel_) + rate_),
+          stats_(stats) {}
+
+    CastResult run() {
+        pa_ = pose_at(ma_, 0);
+        pb_ = pose_at(mb_, 0);
+        dist_ = distance_now(loop_tolerance_);
+        for (;;) {
+            if (stats_.steps >= kMaxMotionSteps) return report(Termination::MaxIterations);
+            ++stats_.steps;
+            if (dist_.intersecting || dist_.distance <= delta_) return report(Termination::Hit);
+            const double h = advancement();
+            if (h > 1 - t0_) return no_hit();  // no contact before the step's end
+            if (t0_ + h > t0_) {
+                advance(t0_ + h);
+                continue;
+            }
+            // The advancement cannot move t0 (near contact when GJK's axis or distance is not good
+            // enough to certify a step, e.g. curved surfaces below 1e-7 of their size): a window
+            // short enough that the disks stay within kWindow times the distance.
+            double t1 = t0_ + std::fmin(rate_ > 0 ? kWindow * dist_.distance / rate_ : 1.0, window_cap_);
+            if (t1 > t_end_) t1 = t_end_;
+            if (!(t1 > t0_) || window_cap_ < kMinWindow) return report(Termination::NoProgress);
+            if (!cast_window(t1)) return no_hit();
+        }
+    }
+
+  private:
+    // Distance at the current poses. A FullSimplex claim is checked by a cast with no motion and,
+    // when that finds the shapes apart, measured again at a coarse tolerance. (Written when GJK
+    // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; gjk.hpp now rejects
+    // flat tetrahedra and sub-simplices below the lower bound, and the motion tests pass without
+    // this check. It stays as a cheap second opinion: it runs only on an intersection claim.)
+    DistanceResult distance_now(double tol) {
+        DistanceResult d = gjk_distance(a_, pa_, b_, pb_, tol, max_iterations_);
+        dist_tolerance_ = tol;
+        iterations_ += d.iterations;
+        ++stats_.distances;
+        if (d.intersecting && d.termination == Termination::FullSimplex) {
+            const CastResult c = shape_cast(a_, pa_, Vec3{}, b_, pb_, Vec3{}, kMinTolerance, max_iterations_);
+            iterations_ += c.iterations;
+            ++stats_.casts;
+            if (!c.hit) {
+                const DistanceResult coarse = gjk_distance(a_, pa_, b_, pb_, kMaxCastTolerance, max_iterations_);
+                iterations_ += coarse.iterations;
+                ++stats_.distances;
+                if (!coarse.intersecting) {
+                    d = coarse;
+                    dist_tolerance_ = kMaxCastTolerance;
+                }
+            }
+        }
+        return d;
+    }
+
+    CastResult no_hit() const {
+        CastResult r;
+        r.hit = false;
+        r.toi = 1;
+        r.termination = Termination::Separated;
+        r.iterations = iterations_;
+        return r;
+    }
+
+    // A hit at t0 from the distance query there.
+    CastResult report(Termination termination) {
+        if (loop_tolerance_ > tolerance_ && !dist_.intersecting)
+            dist_ = distance_now(std::fmax(tolerance_, kFinalDistanceFloor));
+        CastResult r;
+        r.hit = true;
+        r.toi = t0_;
+        r.termination = termination;
+        r.iterations = iterations_;
+        r.point = 0.5 * (dist_.point_a + dist_.point_b);
+        if (!dist_.intersecting && dist_.distance > 0) {
+            r.normal = dist_.axis;
+        } else if (t0_ == 0) {
+            // Overlap at the start: oppose the relative velocity of the contact point (B's
+            // relative to A's), as shape_cast's -r; else from A's origin toward B's.
+            const Vec3 rel = body_b_.velocity(r.point, 0) - body_a_.velocity(r.point, 0);
+            r.normal = normalized_or(-rel, normalized_or(pb_.translation - pa_.translation, dist_.axis));
+        } else {
+            r.normal = clipped_ ? clip_normal_ : dist_.axis;
+        }
+        return r;
+    }
+
+    void advance(double t) {
+        t0_ = t;
+        if (t0_ >= t_end_) t_end_ = 1;  // the window is done: the rest of the step is next
+        window_cap_ = INFINITY;
+        pa_ = pose_at(ma_, t0_);
+        pb_ = pose_at(mb_, t0_);
+        dist_ = distance_now(loop_tolerance_);
+    }
+
+    // The conservative-advancement step from t0: the largest of three proven lower bounds of the
+    // time to the next contact, from the distance query at t0 (0 when none proves anything).
+    // (1) The separation along the distance's axis n, from two supports (exact whatever GJK's
+    //     accuracy; differences taken before rotating, so far from the world origin it keeps its
+    //     digits), bounds the distance from below and shrinks no faster than the approach along n
+    //     plus, per body, angle * rho * |n x axis| (a point within rho of the axis moves along n no
+    //     faster).
+    // (2) The distance, when GJK certified it (rule 1: within its query's tolerance), shrinks no
+    //     faster than the relative speed plus rho * angle per body, in any direction.
+    // (3) Second order: near a closest approach the separation along n barely changes while the
+    //     first-order bound still charges the full turning speed, and (1) crawls in steps of the
+    //     distance over the speed (a rod turning by nearly pi past a ball 4e-8 away ran out of its
+    //     4096 steps). Over a span the separation along n is at least the smaller end value of
+    //     the (linear) centre term minus each body's support bound over the span
+    //     (Body::support_bound), which costs two supports per turning body and proves a span about
+    //     sqrt(distance) long. A few spans are tried, longest first.
+    double advancement() const {
+        const Vec3 n = dist_.axis;
+        const Vec3 sa = pa_.rotation * support(a_, pa_.to_local_direction(n));
+        const Vec3 sb = pb_.rotation * support(b_, pb_.to_local_direction(-n));
+        const double sep = dot(n, (pb_.translation - pa_.translation) + (sb - sa)) - kRounding * size_;
+        const double rate_n = std::fmax(0.0, -dot(n, linear_rel_)) + body_a_.rate() * length(cross(n, ma_.axis())) +
+                              body_b_.rate() * length(cross(n, mb_.axis()));
+        double h = 0;
+        if (sep > 0) h = rate_n > 0 ? sep / rate_n : INFINITY;
+        if (dist_.termination == Termination::RelativeError && speed_bound_ > 0) {
+            const double certified = dist_.distance * (1 - dist_tolerance_) - kRounding * size_;
+            if (certified / speed_bound_ > h) h = certified / speed_bound_;
+        }
+        if (sep > delta_ && h < 1 - t0_) {
+            const Vec3 c0 = pb_.translation - pa_.translation;
+            double span = 1 - t0_;
+            const double curvature = body_a_.rate() * ma_.angle() + body_b_.rate() * mb_.angle();
+            if (curvature > 0) span = std::fmin(span, std::fmax(4 * h, std::sqrt(2 * sep / curvature)));
+            for (int trial = 0; trial < 6 && span > h; ++trial, span *= 0.25) {
+                const double centre = std::fmin(dot(n, c0), dot(n, c0 + span * linear_rel_));
+                const double lower = centre - body_a_.support_bound(n, pa_, span) -
+                                     body_b_.support_bound(-n, pb_, span) - kRounding * size_;
+                if (lower > delta_) return span;
+            }
+        }
+        return h;
+    }
+
+    // Casts the fattened shapes over the window [t0, t1] and moves t0 past what the cast proves
+    // free of contact, or halves the window while the fattened shapes touch at t0. False when the
+    // cast proves the rest of the step free.
+    bool cast_window(double t1) {
+        // Each body at its orientation at the window's middle (every orientation of the window is
+        // within half the angle of it, so the disk is about half as wide as one about the start)
+        // and its position at t0, cast with its translation.
+        const double tm = 0.5 * (t0_ + t1);
+        const double ra = body_a_.disk(t0_, tm), rb = body_b_.disk(t0_, tm);
+        Transform qa = pa_, qb = pb_;
+        if (body_a_.rotates) qa.rotation = pose_at(ma_, tm).rotation;
+        if (body_b_.rotates) qb.rotation = pose_at(mb_, tm).rotation;
+        const Vec3 ta = (t1 - t0_) * ma_.linear(), tb = (t1 - t0_) * mb_.linear();
+        // The cast's accuracy (absolute): no finer than needed to land within delta / 2 of the
+        // true contact when the disks are that thin, and coarse enough elsewhere; always well below
+        // the distance so that "touching at the start" means the disks, not the cast's slack.
+        const double reach = length(pb_.translation - pa_.translation) + radii_ + 2 * (ra + rb);
+        const double target = std::fmax(0.5 * delta_, std::fmin(kCastSlack * dist_.distance, ra + rb));
+        double cast_tolerance = reach > 0 ? target / reach : kMaxCastTolerance;
+        if (!(cast_tolerance <= kMaxCastTolerance)) cast_tolerance = kMaxCastTolerance;
+        if (!(cast_tolerance >= kMinTolerance)) cast_tolerance = kMinTolerance;
+
+        const CastResult c = fattened_cast(body_a_, qa, ra, ta, body_b_, qb, rb, tb, cast_tolerance,
+                                           std::min(max_iterations_, kMaxCastIterations));
+        iterations_ += c.iterations;
+        ++stats_.casts;
+
+        // A cast's proof rests on support points and clipping planes computed in double precision:
+        // on curved surfaces near contact (distances near 1e-9 of the size) a clip or a miss came
+        // out up to 2.4e-10 of the step past the truth. Each advance by a cast backs off by the
+        // time in which the shapes could close kCastBackoff of their size.
+        const double backoff = speed_bound_ > 0 ? kCastBackoff * size_ / speed_bound_ : 0;
+        double t_next = t0_;
+        if (!c.hit) {
+            // Proven free of contact over [t0, t1].
+            if (t1 >= 1) return false;
+            t_next = t1 - backoff;
+            t_end_ = 1;
+        } else {
+            const double t_clip = t0_ + c.toi * (t1 - t0_) - backoff;
+            if (c.toi > 0 && t_clip > t0_) {
+                // No contact before the fattened shapes meet.
+                t_next = t_clip < t1 ? t_clip : t1;
+                clip_normal_ = c.normal;
+                clipped_ = true;
+            } else {
+                ++stats_.bisections;
+            }
+        }
+        if (t_next > t0_) {
+            advance(t_next);
+        } else {
+            // The fattened shapes touch at t0 while the true ones are apart, and nothing else
+            // moved t0: halve the window, first half first (the same t0 and distance).
+            window_cap_ = 0.5 * std::fmin(window_cap_, t1 - t0_);
+        }
+        return true;
+    }
+
+    const Shape& a_;
+    const Shape& b_;
+    const Motion& ma_;
+    const Motion& mb_;
+    const Body body_a_, body_b_;
+    const double tolerance_;
+    const uint32_t max_iterations_;
+    const double size_;            // the contact distance's scale (see motion_cast)
+    const double radii_;           // the sum of the shapes' bounding radii
+    const double delta_;           // "within the tolerance of contact": tolerance * size
+    const double rate_;            // the disks grow at most this fast (per step)
+    const double loop_tolerance_;  // of the distance queries inside the loop
+    const Vec3 linear_rel_;        // B's velocity relative to A's (per step)
+    const double speed_bound_;     // |d distance / dt| <= this (per step)
+    MotionCastStats& stats_;
+    uint32_t iterations_ = 0;  // support evaluations of every query so far
+    double t0_ = 0;            // no contact in [0, t0]
+    Transform pa_, pb_;        // the poses at t0
+    DistanceResult dist_;      // the distance at t0
+    double dist_tolerance_ = 0;  // the relative tolerance of the query behind dist_
+    Vec3 clip_normal_{};         // world, from A toward B, of the latest clip of a fattened cast
+    bool clipped_ = false;
+    // The current window is [t0, t1] with t1 = min(t_end, t0 + window_cap, the disk rule).
+    double t_end_ = 1;              // the end of the window being worked through
+    double window_cap_ = INFINITY;  // halved while the fattened shapes touch at t0; reset on progress
+};
+
 }  // namespace
 
-namespace motion_detail {
-
-CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
-                            uint32_t max_iterations, Strategy strategy, MotionCastStats* out_stats) {
+CastResult motion_cast(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
+                       uint32_t max_iterations, MotionCastStats* out_stats) {
     MotionCastStats stats;
     if (max_iterations == 0) max_iterations = 1;
     // Comparisons written so that NaN takes the minimum.
@@ -152,7 +392,6 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
     // the other one when that is a point.
     const double radius_a = bounding_radius(a), radius_b = bounding_radius(b);
     const double size = radius_a > 0 && radius_b > 0 ? std::fmin(radius_a, radius_b) : std::fmax(radius_a, radius_b);
-    const double delta = tolerance * size;  // "within the tolerance of contact"
 
     if (!turns(ma) && !turns(mb)) {
         // Pure translations: the exact shape cast, nothing paid for rotation. It stops with the
@@ -161,6 +400,7 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
         stats.casts = 1;
         stats.steps = 1;
         if (out_stats) *out_stats = stats;
+        const double delta = tolerance * size;
         const double reach = 2 * (radius_a + radius_b);
         const double cast_tolerance =
             reach > 0 && delta > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
@@ -168,229 +408,9 @@ CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, co
                           make_transform(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance,
                           max_iterations);
     }
-
-    const Body body_a(a, ma), body_b(b, mb);
-    const double rate = body_a.rate() + body_b.rate();  // the disks grow at most this fast
-    const double loop_tolerance = std::fmax(tolerance, kLoopDistanceTolerance);
-    const Vec3 linear_rel = mb.linear() - ma.linear();  // B's velocity relative to A's (per step)
-    const bool hybrid = strategy != Strategy::DiskBisection;
-    // Advancement: the fattened cast only where the advancement cannot move t0.
-    const double cast_worth = strategy == Strategy::Hybrid ? kCastWorth : INFINITY;
-    const double speed_bound = length(linear_rel) + rate;  // |d distance / dt| <= this (per step)
-
-    uint32_t iterations = 0;
-    double t0 = 0;
-    Transform pa = pose_at(ma, 0), pb = pose_at(mb, 0);
-    // Distance at the current poses. A FullSimplex claim is checked by a cast with no motion and,
-    // when that finds the shapes apart, measured again at a coarse tolerance. (Written when GJK
-    // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; gjk.hpp now rejects
-    // flat tetrahedra and sub-simplices below the lower bound, and the motion tests pass without
-    // this check. It stays as a cheap second opinion: it runs only on an intersection claim.)
-    double dist_tolerance = loop_tolerance;  // the relative tolerance of the query behind `dist`
-    auto distance_now = [&](double tol) {
-        DistanceResult d = gjk_distance(a, pa, b, pb, tol, max_iterations);
-        dist_tolerance = tol;
-        iterations += d.iterations;
-        ++stats.distances;
-        if (d.intersecting && d.termination == Termination::FullSimplex) {
-            const CastResult c = shape_cast(a, pa, Vec3{}, b, pb, Vec3{}, kMinTolerance, max_iterations);
-            iterations += c.iterations;
-            ++stats.casts;
-            if (!c.hit) {
-                const DistanceResult coarse = gjk_distance(a, pa, b, pb, kMaxCastTolerance, max_iterations);
-                iterations += coarse.iterations;
-                ++stats.distances;
-                if (!coarse.intersecting) {
-                    d = coarse;
-                    dist_tolerance = kMaxCastTolerance;
-                }
-            }
-        }
-        return d;
-    };
-    DistanceResult dist = distance_now(loop_tolerance);
-    Vec3 clip_normal{};  // world, from A toward B, of the latest clip of a fattened cast
-    bool clipped = false;
-
-    auto finish = [&](CastResult r) {
-        r.iterations = iterations;
-        if (out_stats) *out_stats = stats;
-        return r;
-    };
-    auto no_hit = [&] {
-        CastResult r;
-        r.hit = false;
-        r.toi = 1;
-        r.termination = Termination::Separated;
-        return finish(r);
-    };
-    // A hit at t0 from the distance query there.
-    auto report = [&](Termination termination) {
-        if (loop_tolerance > tolerance && !dist.intersecting)
-            dist = distance_now(std::fmax(tolerance, kFinalDistanceFloor));
-        CastResult r;
-        r.hit = true;
-        r.toi = t0;
-        r.termination = termination;
-        r.point = 0.5 * (dist.point_a + dist.point_b);
-        if (!dist.intersecting && dist.distance > 0) {
-            r.normal = dist.axis;
-        } else if (t0 == 0) {
-            // Overlap at the start: oppose the relative velocity of the contact point (B's
-            // relative to A's), as shape_cast's -r; else from A's origin toward B's.
-            const Vec3 rel = body_b.velocity(r.point, 0) - body_a.velocity(r.point, 0);
-            r.normal = normalized_or(-rel, normalized_or(pb.translation - pa.translation, dist.axis));
-        } else {
-            r.normal = clipped ? clip_normal : dist.axis;
-        }
-        return finish(r);
-    };
-
-    // The current window is [t0, t1] with t1 = min(t_end, t0 + window_cap, the disk rule).
-    double t_end = 1;              // disk strategy: the end of the window being worked through
-    double window_cap = INFINITY;  // halved while the fattened shapes touch at t0; reset on progress
-    auto advance = [&](double t) {
-        t0 = t;
-        if (t0 >= t_end) t_end = 1;  // the window is done: the rest of the step is next
-        window_cap = INFINITY;
-        pa = pose_at(ma, t0);
-        pb = pose_at(mb, t0);
-        dist = distance_now(loop_tolerance);
-    };
-
-    for (;;) {
-        if (stats.steps >= kMaxMotionSteps) return report(Termination::MaxIterations);
-        ++stats.steps;
-        if (dist.intersecting || dist.distance <= delta) return report(Termination::Hit);
-        const double d = dist.distance;
-
-        // Hybrid: two proven lower bounds of the next contact from the distance query; the
-        // larger is taken.
-        // (1) The separation along the distance's axis n, from two supports (exact whatever GJK's
-        //     accuracy; differences taken before rotating, so far from the world origin it keeps
-        //     its digits), bounds the distance from below and shrinks no faster than the approach
-        //     along n plus, per body, angle * rho * |n x axis| (a point within rho of the axis
-        //     moves along n no faster).
-        // (2) The distance, when GJK certified it (rule 1: within its query's tolerance), shrinks no
-        //     faster than the relative speed plus rho * angle per body, in any direction.
-        double t_ca = t0;
-        if (hybrid) {
-            const Vec3 n = dist.axis;
-            const Vec3 sa = pa.rotation * support(a, pa.to_local_direction(n));
-            const Vec3 sb = pb.rotation * support(b, pb.to_local_direction(-n));
-            const double sep = dot(n, (pb.translation - pa.translation) + (sb - sa)) - kRounding * size;
-            const double rate_n = std::fmax(0.0, -dot(n, linear_rel)) + body_a.rate() * length(cross(n, ma.axis())) +
-                                  body_b.rate() * length(cross(n, mb.axis()));
-            double h = 0;
-            if (sep > 0) h = rate_n > 0 ? sep / rate_n : INFINITY;
-            if (dist.termination == Termination::RelativeError && speed_bound > 0) {
-                const double certified = d * (1 - dist_tolerance) - kRounding * size;
-                if (certified / speed_bound > h) h = certified / speed_bound;
-            }
-            // (3) Second order: near a closest approach the separation along n barely changes
-            // while the first-order bound still charges the full turning speed, and (1) crawls
-            // in steps of the distance over the speed (a rod turning by nearly pi past a ball
-            // 4e-8 away ran out of its 4096 steps). Over a span the separation along n is at least
-            // the smaller end value of the (linear) centre term minus each body's support bound
-            // over the span (Body::support_bound), which costs two supports per turning body and
-            // proves a span about sqrt(distance) long. A few spans are tried, longest first.
-            if (sep > delta && h < 1 - t0) {
-                const Vec3 c0 = pb.translation - pa.translation;
-                double span = 1 - t0;
-                const double curvature = body_a.rate() * ma.angle() + body_b.rate() * mb.angle();
-                if (curvature > 0) span = std::fmin(span, std::fmax(4 * h, std::sqrt(2 * sep / curvature)));
-                for (int trial = 0; trial < 6 && span > h; ++trial, span *= 0.25) {
-                    const double centre = std::fmin(dot(n, c0), dot(n, c0 + span * linear_rel));
-                    const double lower = centre - body_a.support_bound(n, pa, span) -
-                                         body_b.support_bound(-n, pb, span) - kRounding * size;
-                    if (lower > delta) {
-                        h = span;
-                        break;
-                    }
-                }
-            }
-            if (h > 1 - t0) return no_hit();  // no contact before the step's end
-            if (h > 0) t_ca = t0 + h;
-        }
-
-        // The window: short enough that the disks stay within kWindow times the distance.
-        double t1 = t0 + std::fmin(rate > 0 ? kWindow * d / rate : 1.0, window_cap);
-        if (t1 > t_end) t1 = t_end;
-        // Hybrid: the fattened cast pays only when its window reaches well past the advancement.
-        if (t_ca > t0 && !(t1 - t0 > cast_worth * (t_ca - t0))) {
-            advance(t_ca);
-            continue;
-        }
-        if (!(t1 > t0) || window_cap < kMinWindow) {
-            if (t_ca > t0) {
-                advance(t_ca);
-                continue;
-            }
-            return report(Termination::NoProgress);  // below the time resolution
-        }
-
-        // The fattened shapes over [t0, t1]: each body at its orientation at the window's middle
-        // (every orientation of the window is within half the angle of it, so the disk is about
-        // half as wide as one about the start) and its position at t0, cast with its translation.
-        const double tm = 0.5 * (t0 + t1);
-        const double ra = body_a.disk(t0, tm), rb = body_b.disk(t0, tm);
-        Transform qa = pa, qb = pb;
-        if (body_a.rotates) qa.rotation = pose_at(ma, tm).rotation;
-        if (body_b.rotates) qb.rotation = pose_at(mb, tm).rotation;
-        const Vec3 ta = (t1 - t0) * ma.linear(), tb = (t1 - t0) * mb.linear();
-        // The cast's accuracy (absolute): no finer than needed to land within delta / 2 of the
-        // true contact when the disks are that thin, and coarse enough elsewhere; always well below
-        // the distance so that "touching at the start" means the disks, not the cast's slack.
-        const double span = length(pb.translation - pa.translation) + radius_a + radius_b + 2 * (ra + rb);
-        const double target = std::fmax(0.5 * delta, std::fmin(kCastSlack * d, ra + rb));
-        double cast_tolerance = span > 0 ? target / span : kMaxCastTolerance;
-        if (!(cast_tolerance <= kMaxCastTolerance)) cast_tolerance = kMaxCastTolerance;
-        if (!(cast_tolerance >= kMinTolerance)) cast_tolerance = kMinTolerance;
-
-        const CastResult c = fattened_cast(body_a, qa, ra, ta, body_b, qb, rb, tb, cast_tolerance,
-                                           std::min(max_iterations, kMaxCastIterations));
-        iterations += c.iterations;
-        ++stats.casts;
-
-        // A cast's proof rests on support points and clipping planes computed in double precision:
-        // on curved surfaces near contact (distances near 1e-9 of the size) a clip or a miss came
-        // out up to 2.4e-10 of the step past the truth. Each advance by a cast backs off by the time
-        // in which the shapes could close kCastBackoff of their size.
-        const double backoff = speed_bound > 0 ? kCastBackoff * size / speed_bound : 0;
-        double t_next = t0;
-        if (!c.hit) {
-            // Proven free of contact over [t0, t1].
-            if (t1 >= 1) return no_hit();
-            t_next = t1 - backoff;
-            t_end = 1;
-        } else {
-            const double t_clip = t0 + c.toi * (t1 - t0) - backoff;
-            if (c.toi > 0 && t_clip > t0) {
-                // No contact before the fattened shapes meet.
-                t_next = t_clip < t1 ? t_clip : t1;
-                clip_normal = c.normal;
-                clipped = true;
-            } else {
-                ++stats.bisections;
-            }
-        }
-        if (t_ca > t_next) t_next = t_ca;
-        if (t_next > t0) {
-            advance(t_next);
-        } else {
-            // The fattened shapes touch at t0 while the true ones are apart, and nothing else
-            // moved t0: halve the window, first half first (the same t0 and distance).
-            window_cap = 0.5 * std::fmin(window_cap, t1 - t0);
-        }
-    }
-}
-
-}  // namespace motion_detail
-
-CastResult motion_cast(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
-                       uint32_t max_iterations, MotionCastStats* out_stats) {
-    return motion_detail::motion_cast_with(a, ma, b, mb, tolerance, max_iterations, motion_detail::kDefaultStrategy,
-                                           out_stats);
+    const CastResult r = MotionCaster(a, ma, b, mb, tolerance, max_iterations, size, radius_a + radius_b, stats).run();
+    if (out_stats) *out_stats = stats;
+    return r;
 }
 
 }  // namespace kairos

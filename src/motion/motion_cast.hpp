@@ -29,12 +29,16 @@ struct MotionCastStats {
 // linearly, the orientation turns at constant angular velocity about a fixed world axis).
 //
 // Pure translations (neither motion rotates) take the exact shape_cast. Otherwise time advances
-// from t0 = 0 by proven steps (motion_detail::Strategy): conservative advancement from a distance
-// query at t0, and disk bounds: each body, at its pose in the window [t0, t1] and fattened by the
+// from t0 = 0 by proven steps: conservative advancement from a distance query at t0 while it moves
+// t0, and disk bounds where it cannot (near contact, when GJK's axis or distance is not good
+// enough to certify a step): each body, at its pose in the window [t0, t1] and fattened by the
 // disk its rotation sweeps (built in its local frame, where the rotation axis is constant), is
 // cast with its translation over the window; t0 advances to each clip, a window whose fattened
 // shapes already touch at t0 is halved (first half first), and a window the cast misses is
-// proven free of contact.
+// proven free of contact. (The talks' disk bounds with bisection alone, and a hybrid that cast
+// wherever the window reached 3x past the advancement, took more support evaluations: about 30
+// per fattened cast on the disks' flat, coplanar support points. Their rows stay in
+// bench/results/motion.csv as kairos_disk and kairos_hybrid; they were removed in 0.2.)
 //
 // Result (world frame): hit when the true shapes come within delta = tolerance * min(rA, rB) of
 // each other (rA, rB the bounding radii of the shapes about their local origins; the other one
@@ -57,27 +61,5 @@ CastResult motion_cast(const Shape& a, const Motion& ma, const Shape& b, const M
 
 // Guard on the outer loop (windows, clips and bisections together).
 inline constexpr uint32_t kMaxMotionSteps = 4096;
-
-namespace motion_detail {
-
-// How the windows advance.
-// - DiskBisection: docs/algorithms.md §4 as written: fattened casts only; t0 advances to each clip (or
-//   past a window the cast misses), and a window whose fattened shapes touch at t0 is halved.
-// - Hybrid: each distance query also gives a conservative-advancement step (the separation along
-//   the distance's axis, and the certified distance, against bounds on how fast they can shrink);
-//   the fattened cast runs when its window reaches kCastWorth times past that step, and t0 takes
-//   the larger of the two proven advances.
-// - Advancement (default): the advancement step alone while it moves t0; the fattened cast with
-//   bisection where it cannot (near contact when GJK's axis or distance is not good enough to
-//   certify a step, e.g. curved surfaces below 1e-7 of their size). On random rotating pairs of
-//   every kind it needed the fewest support evaluations of the three (the fattened casts cost
-//   about 30 iterations each on the disks' flat, coplanar support points).
-enum class Strategy { DiskBisection, Hybrid, Advancement };
-inline constexpr Strategy kDefaultStrategy = Strategy::Advancement;
-
-CastResult motion_cast_with(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
-                            uint32_t max_iterations, Strategy strategy, MotionCastStats* out_stats);
-
-}  // namespace motion_detail
 
 }  // namespace kairos
