@@ -257,6 +257,10 @@ private:
     std::vector<btBroadphaseProxy*> proxies_;
 };
 
+#if !KAIROS_RESEARCH_BROADPHASES
+#error "bench_world compares the research broad phases: configure with -DKAIROS_RESEARCH_BROADPHASES=ON"
+#endif
+
 enum class Variant { Spacetime, Global, Queued, Encapsulating, Fcl, BulletSweep, BulletDbvt };
 
 const char* variant_name(Variant v) {

@@ -2,7 +2,8 @@
 /* Kairos scene: a few thousand objects (drifting dust, bullets, thin walls, spinning rods) stepped
  * through a world for a number of frames. Prints the contacts found, how many of them a check at
  * the frames alone would have missed, and the time per step by phase; draws the trajectories and
- * contacts into a picture (PPM, converted to PNG when pnmtopng or ImageMagick is installed).
+ * contacts into a picture: <prefix>.ppm, and <prefix>.gp, a gnuplot script that turns it into
+ * <prefix>.png with a title, a legend of the colours and axes in scene units (scripts/demo.sh runs it).
  *
  * Usage: kairos_scene [frames (default 30)] [output prefix (default kairos_scene)]
  * Only the public C API is used. A bullet stops at its first contact and leaves the world;
@@ -107,8 +108,41 @@ static void disk(double x, double y, double radius_px, const unsigned char rgb[3
         }
 }
 
+/* The gnuplot script for <prefix>.png: the PPM drawn in scene units (x from -5 to kWidth + 5, y
+ * from -3 to kHeight + 3, as to_px and to_py map them), a title with the counts, and a legend. */
+static int write_plot_script(const char* prefix, long header_bytes, int frames, long long contacts,
+                             long long missed) {
+    char path[512];
+    snprintf(path, sizeof path, "%s.gp", prefix);
+    FILE* f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "cannot write %s\n", path);
+        return 0;
+    }
+    fprintf(f,
+            "set terminal pngcairo size 1760,940 font 'DejaVu Sans,11'\n"
+            "set output '%s.png'\n"
+            "set title \"Kairos world: %d objects over %d steps; %lld contacts found, %lld of them missed by a "
+            "check at the frames alone\" font ',14'\n"
+            "set xlabel 'x (scene units; a wall is 8 long)'\nset ylabel 'y (scene units)'\n"
+            "set xrange [-5:%g]\nset yrange [-3:%g]\nset size ratio -1\n"
+            "set key outside right top box opaque samplen 1 spacing 1.3\n"
+            "plot '%s.ppm' binary array=(%d,%d) skip=%ld format='%%uchar' flipy dx=%.17g dy=%.17g "
+            "origin=(-5,-3) with rgbimage notitle, \\\n"
+            "  NaN with points pt 7 ps 0.8 lc rgb '#969696' title 'dust (drifting spheres)', \\\n"
+            "  NaN with lines lw 3 lc rgb '#1e1e1e' title 'thin wall (a box at rest)', \\\n"
+            "  NaN with linespoints pt 7 lc rgb '#e67e22' title 'bullet: path, end', \\\n"
+            "  NaN with lines lw 3 lc rgb '#2471a3' title 'spinning rod: path, end, swept circle', \\\n"
+            "  NaN with points pt 7 ps 0.8 lc rgb '#c81e1e' title 'contact point', \\\n"
+            "  NaN with points pt 6 ps 1.8 lc rgb '#aa00aa' title 'contact missed at the frames'\n",
+            prefix, COUNT, frames, contacts, missed, kWidth + 5, kHeight + 3, prefix, PW, PH, header_bytes,
+            (kWidth + 10) / PW, (kHeight + 6) / PH);
+    fclose(f);
+    return 1;
+}
+
 static void write_picture(const char* prefix, int frames, const kairos_vec3* hit_points, const int* hit_missed,
-                          int hits) {
+                          int hits, long long contacts, long long missed) {
     static const unsigned char white[3] = {255, 255, 255}, grey[3] = {150, 150, 150}, wall[3] = {30, 30, 30},
                                bullet[3] = {230, 126, 34}, rod[3] = {36, 113, 163}, red[3] = {200, 30, 30},
                                magenta[3] = {170, 0, 170};
@@ -140,24 +174,19 @@ static void write_picture(const char* prefix, int frames, const kairos_vec3* hit
         disk(hit_points[i].x, hit_points[i].y, 1.8, red, 0.9, 0);
         if (hit_missed[i]) disk(hit_points[i].x, hit_points[i].y, 4.5, magenta, 0.8, 1);
     }
-    char ppm[512], png[512], cmd[2200];
+    char ppm[512];
     snprintf(ppm, sizeof ppm, "%s.ppm", prefix);
-    snprintf(png, sizeof png, "%s.png", prefix);
     FILE* f = fopen(ppm, "wb");
     if (!f) {
         fprintf(stderr, "cannot write %s\n", ppm);
         return;
     }
-    fprintf(f, "P6\n%d %d\n255\n", PW, PH);
+    const int header = fprintf(f, "P6\n%d %d\n255\n", PW, PH);
     fwrite(image, 1, sizeof image, f);
     fclose(f);
-    snprintf(cmd, sizeof cmd, "pnmtopng '%s' > '%s' 2>/dev/null || convert '%s' '%s' 2>/dev/null", ppm, png, ppm, png);
-    if (system(cmd) == 0) {
-        printf("picture: %s (and %s)\n", png, ppm);
-    } else {
-        remove(png);
-        printf("picture: %s (no PNG converter found)\n", ppm);
-    }
+    if (header > 0 && write_plot_script(prefix, header, frames, contacts, missed))
+        printf("picture: %s (%s.gp draws %s.png with a title, a legend and axes: gnuplot %s.gp)\n", ppm, prefix,
+               prefix, prefix);
 }
 
 /* ---- The scene ----------------------------------------------------------------------------------- */
@@ -349,7 +378,7 @@ int main(int argc, char** argv) {
     int stuck = 0;
     for (int i = 0; i < COUNT; ++i) stuck += objs[i].stuck;
     printf("bullets stopped at a contact: %d of %d\n", stuck, BULLETS);
-    write_picture(prefix, frames, hit_points, hit_missed, (int)hits);
+    write_picture(prefix, frames, hit_points, hit_missed, (int)hits, contacts, missed);
 
     for (int i = 0; i < COUNT; ++i) {
         kairos_shape_release(objs[i].shape);

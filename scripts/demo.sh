@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # Quick start, the main job: install missing Debian packages, build Kairos (release preset), run
 # the demo (fast and spinning objects that tunnel between frames, and their times of impact),
-# step the scene of a few thousand objects (picture: build/demo/kairos_scene.png or .ppm), and
+# step the scene of a few thousand objects (picture: build/demo/kairos_scene.png), and
 # draw the shape-cast accuracy/speed chart from a fresh run (build/demo/cast-chart.png; the
 # committed bench/results/ are never rewritten).
 #
@@ -34,6 +34,8 @@ echo
 echo "==== 2. A world of a few thousand moving objects ===="
 mkdir -p build/demo
 build/release/examples/kairos_scene 30 build/demo/kairos_scene
+gnuplot build/demo/kairos_scene.gp
+echo "picture: build/demo/kairos_scene.png"
 
 if [ "${KAIROS_DEMO_NO_CHART:-0}" != 1 ]; then
     echo

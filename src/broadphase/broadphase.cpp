@@ -44,9 +44,13 @@ const char* to_string(BroadPhaseKind kind) {
 std::unique_ptr<BroadPhase> BroadPhase::create(BroadPhaseKind kind) {
     switch (kind) {
         case BroadPhaseKind::SpacetimeSap:
-            return broadphase_detail::make_region_sap();
+            return broadphase_detail::make_spacetime_sap();
         case BroadPhaseKind::SpacetimeSapGlobal:
+#if KAIROS_RESEARCH_BROADPHASES
             return broadphase_detail::make_global_sap();
+#else
+            return nullptr;
+#endif
         case BroadPhaseKind::SpacetimeSapQueued:
             return broadphase_detail::make_queued_sap();
         case BroadPhaseKind::EncapsulatingSap:

@@ -50,7 +50,8 @@ enum class BroadPhaseKind {
     SpacetimeSapQueued,  // the talks' sweep: one sorted array per axis, swaps queued in an indexed
                          // heap and done in time order
     SpacetimeSapGlobal,  // one sorted array per axis brought to the end order in one batch; every
-                         // crossing that may start an overlap tested exactly in space-time
+                         // crossing that may start an overlap tested exactly in space-time. Research
+                         // only: create() returns null unless built with KAIROS_RESEARCH_BROADPHASES
 };
 
 // "spacetime_sap", "encapsulating_sap", "brute_force", "spacetime_sap_queued",
@@ -183,6 +184,10 @@ protected:
 
     // Objects present in the structure, by id: Live or PendingRemove. Brute force over them.
     void collect_present(std::vector<uint32_t>& out) const;
+    // Objects a and b (either order) whose boxes may meet during the step: when the swept boxes
+    // do, appends the pair and its first time to pairs_ and, when the end boxes overlap, its key
+    // to `entered`. Counts a crossing test.
+    void test_swept_pair(uint32_t a, uint32_t b, std::vector<uint64_t>& entered);
 
     BroadPhaseKind kind_;
     std::vector<Record> records_;

@@ -9,8 +9,8 @@
 
 namespace kairos::broadphase_detail {
 
-std::unique_ptr<BroadPhase> make_region_sap();         // SpacetimeSap (spacetime_sap.cpp)
-std::unique_ptr<BroadPhase> make_global_sap();         // SpacetimeSapGlobal (research/)
+std::unique_ptr<BroadPhase> make_spacetime_sap();      // SpacetimeSap (spacetime_sap.cpp)
+std::unique_ptr<BroadPhase> make_global_sap();         // SpacetimeSapGlobal (research/, when built)
 std::unique_ptr<BroadPhase> make_queued_sap();         // SpacetimeSapQueued (research/)
 std::unique_ptr<BroadPhase> make_encapsulating_sap();  // EncapsulatingSap (reference.cpp)
 std::unique_ptr<BroadPhase> make_brute_force();        // BruteForce (reference.cpp)

@@ -76,6 +76,17 @@ public:
         }
     }
 
+    // Erases every pair with an object for which removed(id) holds; `scratch` receives their keys
+    // (a buffer kept by the caller, so that steady state does not allocate).
+    template <class Removed>
+    void erase_pairs_of(Removed&& removed, std::vector<uint64_t>& scratch) {
+        scratch.clear();
+        for_each([&](uint64_t k) {
+            if (removed(static_cast<uint32_t>(k >> 32)) || removed(static_cast<uint32_t>(k))) scratch.push_back(k);
+        });
+        for (uint64_t k : scratch) erase(k);
+    }
+
 private:
     std::size_t home(uint64_t key) const {
         return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// RegionSap's columns: the column index, an object's entries (place, list, unlist), the re-keying
+// SpacetimeSap's columns: the column index, an object's entries (place, list, unlist), the re-keying
 // of the objects that moved, and per column the sort, the query of one entry and the exact test.
 #include "broadphase/spacetime_sap.hpp"
 
@@ -17,11 +17,11 @@ namespace kairos::broadphase_detail {
 
 // Cell indices are clamped to [-2^30, 2^30), so offset by 2^30 they fit 31 bits: a key is never
 // the hash's empty marker.
-uint64_t RegionSap::column_key(int32_t cy, int32_t cz) {
+uint64_t SpacetimeSap::column_key(int32_t cy, int32_t cz) {
     return (uint64_t{static_cast<uint32_t>(cy + 1073741824)} << 32) | static_cast<uint32_t>(cz + 1073741824);
 }
 
-int32_t RegionSap::cell(double v) const {
+int32_t SpacetimeSap::cell(double v) const {
     // floor(v / cell), monotone in v (so a point of a box lies in a cell of the box's range), and
     // clamped. A positive factor keeps the order; floor by truncation (std::floor is a library
     // call on baseline x86-64).
@@ -32,7 +32,7 @@ int32_t RegionSap::cell(double v) const {
     return i - (static_cast<double>(i) > x ? 1 : 0);  // a selection: negative x is common
 }
 
-uint32_t RegionSap::column_at(int32_t cy, int32_t cz) {
+uint32_t SpacetimeSap::column_at(int32_t cy, int32_t cz) {
     const uint64_t key = column_key(cy, cz);
     if (2 * (column_count_ + 1) > column_index_.size()) {
         std::vector<std::pair<uint64_t, uint32_t>> old;
@@ -56,7 +56,7 @@ uint32_t RegionSap::column_at(int32_t cy, int32_t cz) {
     return static_cast<uint32_t>(columns_.size() - 1);
 }
 
-const RegionSap::Column* RegionSap::find_column(int32_t cy, int32_t cz) const {
+const SpacetimeSap::Column* SpacetimeSap::find_column(int32_t cy, int32_t cz) const {
     if (column_index_.empty()) return nullptr;
     const uint64_t key = column_key(cy, cz);
     const std::size_t mask = column_index_.size() - 1;
@@ -66,18 +66,18 @@ const RegionSap::Column* RegionSap::find_column(int32_t cy, int32_t cz) const {
     return nullptr;
 }
 
-RegionSap::Entry RegionSap::make_entry(uint32_t id, const Aabb& k) {
+SpacetimeSap::Entry SpacetimeSap::make_entry(uint32_t id, const Aabb& k) {
     return {
         k.min.x, k.max.x, {float_below(k.min.y), float_above(k.max.y), float_below(k.min.z), float_above(k.max.z)}, id};
 }
 
-void RegionSap::queue(uint32_t column) {
+void SpacetimeSap::queue(uint32_t column) {
     if (columns_[column].visited == pass_) return;
     columns_[column].visited = pass_;
     queued_.push_back(column);
 }
 
-void RegionSap::unlist(uint32_t id) {
+void SpacetimeSap::unlist(uint32_t id) {
     Member& m = members_[id];
     if (!m.listed) return;
     m.listed = false;
@@ -97,7 +97,7 @@ void RegionSap::unlist(uint32_t id) {
     });
 }
 
-void RegionSap::place(uint32_t id, const Aabb& k) {
+void SpacetimeSap::place(uint32_t id, const Aabb& k) {
     Member& m = members_[id];
     m.keyed = k;
     m.listed = true;
@@ -119,7 +119,7 @@ void RegionSap::place(uint32_t id, const Aabb& k) {
     members_[id].cached = n;
 }
 
-void RegionSap::list(uint32_t id, const Aabb& k) {
+void SpacetimeSap::list(uint32_t id, const Aabb& k) {
     place(id, k);
     if (members_[id].large) {
         large_.insert(std::lower_bound(large_.begin(), large_.end(), id), id);
@@ -129,10 +129,7 @@ void RegionSap::list(uint32_t id, const Aabb& k) {
     for_columns(id, [&](uint32_t c) {
         auto& v = columns_[c].entries;
         columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
-        v.insert(std::lower_bound(
-                     v.begin(), v.end(), e,
-                     [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); }),
-                 e);
+        v.insert(std::lower_bound(v.begin(), v.end(), e, entry_less), e);
     });
 }
 
@@ -144,7 +141,7 @@ void RegionSap::list(uint32_t id, const Aabb& k) {
 //    column is sorted again (the swaps of the step);
 // 4. the entries entering a column are sorted and merged into it in one pass.
 // Objects that become large or stop being large go through unlist/list.
-void RegionSap::rekey_all() {
+void SpacetimeSap::rekey_all() {
     leave_.clear();
     enter_.clear();
     movers_between_.clear();
@@ -214,7 +211,6 @@ void RegionSap::rekey_all() {
     }
     for (uint32_t id : rekeys_) pending_[id] = 0;
     // 4. Entering: merged in order.
-    auto entry_less = [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); };
     std::sort(enter_.begin(), enter_.end(),
               [&](const std::pair<uint32_t, Entry>& x, const std::pair<uint32_t, Entry>& y) {
                   return x.first != y.first ? x.first < y.first : entry_less(x.second, y.second);
@@ -245,13 +241,13 @@ void RegionSap::rekey_all() {
 }
 
 // Insertion sort by (lo, id): the order changes little from one step to the next.
-void RegionSap::sort_column(Column& c) {
+void SpacetimeSap::sort_column(Column& c) {
     auto& v = c.entries;
     uint64_t swaps = 0;
     for (std::size_t i = 1; i < v.size(); ++i) {
         const Entry e = v[i];
         std::size_t j = i;
-        while (j > 0 && (e.lo < v[j - 1].lo || (e.lo == v[j - 1].lo && e.id < v[j - 1].id))) {
+        while (j > 0 && entry_less(e, v[j - 1])) {
             v[j] = v[j - 1];
             --j;
         }
@@ -265,7 +261,7 @@ void RegionSap::sort_column(Column& c) {
 // The candidates of one moving entry in a sorted column: entries whose lo lies in
 // [m.lo - max_len, m.hi] hold every entry whose x interval meets m's. A pair of two moving
 // entries is tested from the one with the smaller id.
-void RegionSap::query_column(const Column& c, uint32_t id) {
+void SpacetimeSap::query_column(const Column& c, uint32_t id) {
     const Entry& m = entry_[id];
     // A few ulps lower, for the rounding of hi - lo and of the subtraction.
     double from = m.lo - c.max_len;
@@ -279,17 +275,6 @@ void RegionSap::query_column(const Column& c, uint32_t id) {
         if (moving_flag_[e.id] && e.id < id) continue;
         candidates_.push_back({id, e.id});
     }
-}
-
-void RegionSap::test_moving_pair(uint32_t a, uint32_t b) {
-    if (a > b) std::swap(a, b);
-    ++counters_.crossing_tests;
-    const Record& ra = records_[a];
-    const Record& rb = records_[b];
-    double t = 0;
-    if (!first_overlap_time({ra.box, ra.box_end}, {rb.box, rb.box_end}, &t)) return;
-    pairs_.push_back({a, b, t});
-    if (boxes_overlap(ra.box_end, rb.box_end)) entered_.push_back(pair_key(a, b));
 }
 
 }  // namespace kairos::broadphase_detail

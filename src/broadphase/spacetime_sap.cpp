@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// RegionSap's flush, teleport and step: objects entered and removed, the overlap set kept between
+// SpacetimeSap's flush, teleport and step: objects entered and removed, the overlap set kept between
 // steps, the sweep of the columns the moving objects touch; and the check of the structure.
 #include "broadphase/spacetime_sap.hpp"
 
@@ -13,13 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "broadphase/box_time.hpp"
 #include "broadphase/factories.hpp"
+#include "broadphase/overlap_check.hpp"
 #include "broadphase/pair_set.hpp"
 
 namespace kairos::broadphase_detail {
 
 template <class Wanted, class F>
-void RegionSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
+void SpacetimeSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
     // The active list holds copies of the entries whose x interval is still open, compacted as
     // it is read; the tests are written without branches but for the rare pair that meets.
     std::size_t n = 0;  // active entries: active_[0, n); the vector only grows
@@ -45,7 +47,7 @@ void RegionSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
     }
 }
 
-void RegionSap::on_flush() {
+void SpacetimeSap::on_flush() {
     if (members_.size() < records_.size()) {
         members_.resize(records_.size());
         moving_flag_.resize(records_.size(), 0);
@@ -55,11 +57,7 @@ void RegionSap::on_flush() {
     }
     if (!pending_removes_.empty()) {
         auto removed = [&](uint32_t id) { return records_[id].state == State::PendingRemove; };
-        doomed_.clear();
-        overlaps_.for_each([&](uint64_t k) {
-            if (removed(static_cast<uint32_t>(k >> 32)) || removed(static_cast<uint32_t>(k))) doomed_.push_back(k);
-        });
-        for (uint64_t k : doomed_) overlaps_.erase(k);
+        overlaps_.erase_pairs_of(removed, doomed_);
         for (uint32_t id : pending_removes_) unlist(id);
         std::erase_if(stale_, removed);
     }
@@ -102,8 +100,7 @@ void RegionSap::on_flush() {
     };
     for (uint32_t c : queued_) {
         auto& v = columns_[c].entries;
-        std::sort(v.begin(), v.end(),
-                  [](const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
+        std::sort(v.begin(), v.end(), entry_less);
         sweep_column(
             columns_[c], [&](uint32_t a, uint32_t b) { return (is_new(a) || is_new(b)) && !both_static(a, b); }, found);
     }
@@ -118,7 +115,7 @@ void RegionSap::on_flush() {
     }
 }
 
-void RegionSap::on_teleport(uint32_t id, const Aabb& old_box) {
+void SpacetimeSap::on_teleport(uint32_t id, const Aabb& old_box) {
     (void)old_box;
     // Drop its pairs: partners share one of its columns (or it is large: all of them).
     Member& m = members_[id];
@@ -153,7 +150,7 @@ void RegionSap::on_teleport(uint32_t id, const Aabb& old_box) {
     }
 }
 
-void RegionSap::on_step() {
+void SpacetimeSap::on_step() {
     for (uint32_t id : moving_) moving_flag_[id] = 1;
     // Pairs overlapping at the start: those of two still objects keep their state; those with a
     // moving object are tested again by the sweeps below.
@@ -229,20 +226,20 @@ void RegionSap::on_step() {
             __builtin_prefetch(&records_[candidates_[i + kAhead].first]);
             __builtin_prefetch(&records_[candidates_[i + kAhead].second]);
         }
-        test_moving_pair(candidates_[i].first, candidates_[i].second);
+        test_swept_pair(candidates_[i].first, candidates_[i].second, entered_);
     }
     for (uint32_t l : large_) {
         for (uint32_t id = 0; id < members_.size(); ++id) {
             if (id == l || !members_[id].listed || !(moving_flag_[l] || moving_flag_[id])) continue;
             if (members_[id].large && id < l) continue;
-            test_moving_pair(l, id);
+            test_swept_pair(l, id, entered_);
         }
     }
     for (uint64_t k : entered_) overlaps_.insert(k);
     for (uint32_t id : moving_) moving_flag_[id] = 0;
 }
 
-std::string RegionSap::check_invariants() const {
+std::string SpacetimeSap::check_invariants() const {
     std::string base = BroadPhase::check_invariants();
     if (!base.empty()) return base;
     std::ostringstream why;
@@ -254,7 +251,7 @@ std::string RegionSap::check_invariants() const {
         for (std::size_t i = 1; i < c.entries.size(); ++i) {
             const Entry& p = c.entries[i - 1];
             const Entry& q = c.entries[i];
-            if (!(p.lo < q.lo || (p.lo == q.lo && p.id < q.id))) return "a column is not sorted";
+            if (!entry_less(p, q)) return "a column is not sorted";
         }
     }
     std::size_t expected_entries = 0;
@@ -300,26 +297,10 @@ std::string RegionSap::check_invariants() const {
         why << "columns hold " << entries << " entries, the objects' ranges " << expected_entries;
         return why.str();
     }
-    std::size_t expected = 0;
-    for (std::size_t x = 0; x < present.size(); ++x) {
-        for (std::size_t y = x + 1; y < present.size(); ++y) {
-            const uint32_t a = present[x], b = present[y];
-            if (both_static(a, b)) continue;
-            const bool by_box = boxes_overlap(records_[a].box, records_[b].box);
-            if (by_box != overlaps_.contains(pair_key(a, b))) {
-                why << "pair " << a << "," << b << ": boxes overlap " << by_box << ", overlap set says " << !by_box;
-                return why.str();
-            }
-            expected += by_box ? 1 : 0;
-        }
-    }
-    if (expected != overlaps_.size()) {
-        why << "overlap set holds " << overlaps_.size() << " pairs, brute force finds " << expected;
-        return why.str();
-    }
-    return {};
+    return check_overlap_set(present, records_, overlaps_,
+                             [](uint32_t, uint32_t, bool, std::ostream&) { return true; });
 }
 
-std::unique_ptr<BroadPhase> make_region_sap() { return std::make_unique<RegionSap>(); }
+std::unique_ptr<BroadPhase> make_spacetime_sap() { return std::make_unique<SpacetimeSap>(); }
 
 }  // namespace kairos::broadphase_detail

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The space-time sweep and prune in regions (BroadPhaseKind::SpacetimeSap, class RegionSap), the
+// The space-time sweep and prune in regions (BroadPhaseKind::SpacetimeSap, class SpacetimeSap), the
 // default. Internal to broadphase/ (namespace broadphase_detail).
 #pragma once
 
@@ -30,9 +30,9 @@ namespace kairos::broadphase_detail {
 // pairs of objects that do not move keep their state in the overlap set, reported at t = 0.
 // Objects whose swept box spans more than kMaxColumns columns are kept in a list of their own and
 // tested against every candidate directly.
-class RegionSap final : public BroadPhase {
+class SpacetimeSap final : public BroadPhase {
 public:
-    RegionSap() : BroadPhase(BroadPhaseKind::SpacetimeSap) {}
+    SpacetimeSap() : BroadPhase(BroadPhaseKind::SpacetimeSap) {}
     std::string check_invariants() const override;
 
     static constexpr int64_t kMaxColumns = 64;
@@ -45,6 +45,8 @@ private:
         float span[4];  // y lo, y hi, z lo, z hi
         uint32_t id;
     };
+    // The order of a column's entries: by lo, ties by id.
+    static bool entry_less(const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); }
     struct Column {
         std::vector<Entry> entries;
         uint32_t visited = 0;  // the pass that last queued it for a sweep
@@ -110,7 +112,6 @@ private:
     // and spans overlap and `wanted(a, b)` holds.
     template <class Wanted, class F>
     void sweep_column(const Column& c, Wanted&& wanted, F&& f);
-    void test_moving_pair(uint32_t a, uint32_t b);
     void query_column(const Column& c, uint32_t id);  // appends to candidates_
     bool both_static(uint32_t a, uint32_t b) const { return records_[a].is_static && records_[b].is_static; }
 

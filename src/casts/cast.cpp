@@ -7,6 +7,7 @@
 // (the kairos_restart rows of bench/results/cast.csv) at 1.5-6x the iterations and up to 2.3x the
 // time, and it reached the iteration cap on curved shapes at tolerance 1e-10; it was removed.
 #include "casts/cast.hpp"
+#include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
 #include <bit>
@@ -180,7 +181,7 @@ struct LocalCast {
 // set then); lambda does not depend on it, and the result's v and points are at the caller's.
 template <class Support>
 class CastLoop {
-  public:
+public:
     CastLoop(Support sup, double margin, Vec3 s, Vec3 r, double tolerance)
         : sup_(sup),
           margin_(margin),
@@ -216,7 +217,7 @@ class CastLoop {
         return result(stop, it);
     }
 
-  private:
+private:
     void adopt_first_scale(Vec3& a, Vec3& b, Vec3& p) {
         const double sc = cast_scale(a, b, x_, r_);
         if (sc == 1) return;
@@ -383,14 +384,14 @@ class CastLoop {
     Vec3 x_;         // the ray point s + lambda r
     const double eps_sq_, eps_;
     double lambda_ = 0;
-    Vec3 v_;                    // search direction: x minus the simplex's closest point
-    Vec3 normal_{};             // v of the latest clip (not unit)
-    bool clipped_ = false;      // a clip happened: normal_ holds its plane's normal
-    bool moved_ = true;         // x moved since the last add (nothing added yet counts as moved)
-    int restarts_left_ = 2;     // restarts of the simplex by the guards (Johnson failure, stalls)
-    double vv_ = INFINITY;      // ||v||^2 of the current simplex estimate
-    double best_vv_ = INFINITY; // smallest ||v||^2 since the last clip
-    int stalled_ = 0;           // estimates in a row, since then, that did not improve on it
+    Vec3 v_;                     // search direction: x minus the simplex's closest point
+    Vec3 normal_{};              // v of the latest clip (not unit)
+    bool clipped_ = false;       // a clip happened: normal_ holds its plane's normal
+    bool moved_ = true;          // x moved since the last add (nothing added yet counts as moved)
+    int restarts_left_ = 2;      // restarts of the simplex by the guards (Johnson failure, stalls)
+    double vv_ = INFINITY;       // ||v||^2 of the current simplex estimate
+    double best_vv_ = INFINITY;  // smallest ||v||^2 since the last clip
+    int stalled_ = 0;            // estimates in a row, since then, that did not improve on it
     Simplex sx_;
 };
 

@@ -2,6 +2,7 @@
 // GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"
+#include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
 #include <cmath>

@@ -25,4 +25,12 @@ struct Pose {
     Quat orientation;
 };
 
+// True when a and b are the same rotation bit for bit (q and -q alike). q_b * q_a^-1 would round
+// to a turn by an angle near 1e-16 instead, and such a motion must take the exact translational
+// path.
+inline bool same_rotation(Quat a, Quat b) {
+    return (a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) ||
+           (a.x == -b.x && a.y == -b.y && a.z == -b.z && a.w == -b.w);
+}
+
 }  // namespace kairos

@@ -15,12 +15,8 @@ public:
     Motion(const Pose& start, const Pose& end) : start_(start), end_(end) {
         // The turn from start to end in world frame, q_rel = q_end * q_start^-1, taken along the
         // shortest arc: q and -q are the same rotation, and w >= 0 picks the angle in [0, pi].
-        // Equal orientations (q or -q, bit for bit) are no turn at all: q * q^-1 would round to an
-        // angle near 1e-16, and such a motion must take the exact translational path.
-        const Quat a = start.orientation, b = end.orientation;
-        if ((a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) ||
-            (a.x == -b.x && a.y == -b.y && a.z == -b.z && a.w == -b.w))
-            return;
+        // Equal orientations (same_rotation) are no turn at all.
+        if (same_rotation(start.orientation, end.orientation)) return;
         Quat rel = end.orientation * conjugate(start.orientation);
         if (rel.w < 0) rel = {-rel.x, -rel.y, -rel.z, -rel.w};
         const Vec3 v{rel.x, rel.y, rel.z};

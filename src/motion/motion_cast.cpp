@@ -57,18 +57,9 @@ double bounding_radius(const Shape& s) {
     return std::isfinite(r) ? r : 0;
 }
 
-// A motion turns unless its two orientations are equal (q and -q alike): Motion reads a tiny
-// angle from the rounding of q q^-1, and such a motion must take the exact shape cast.
-bool turns(const Motion& m) {
-    const Quat a = m.start().orientation, b = m.end().orientation;
-    const bool same = (a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) ||
-                      (a.x == -b.x && a.y == -b.y && a.z == -b.z && a.w == -b.w);
-    return m.rotates() && !same;
-}
-
 Transform pose_at(const Motion& m, double t) {
     const Pose b = m.at(t);
-    return make_transform(b.position, turns(m) ? b.orientation : m.start().orientation);
+    return make_transform(b.position, m.rotates() ? b.orientation : m.start().orientation);
 }
 
 // One body over the step: its motion and what the disk bound needs.
@@ -80,7 +71,7 @@ struct Body {
     bool rotates = false;
 
     Body(const Shape& s, const Motion& m) : shape(&s), motion(&m) {
-        rotates = turns(m);
+        rotates = m.rotates();
         if (rotates) {
             const Transform p0 = pose_at(m, 0);
             local_axis = normalized_or(p0.to_local_direction(m.axis()), {0, 0, 1});
@@ -135,7 +126,7 @@ CastResult fattened_cast(const Body& x, const Transform& px, double rx, Vec3 tx,
 
 // The loop over windows of one rotating pair (at least one motion turns); run() once.
 class MotionCaster {
-  public:
+public:
     MotionCaster(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, double tolerance,
                  uint32_t max_iterations, double size, double radii, MotionCastStats& stats)
         : a_(a),
@@ -179,7 +170,7 @@ class MotionCaster {
         }
     }
 
-  private:
+private:
     // Distance at the current poses. A FullSimplex claim is checked by a cast with no motion and,
     // when that finds the shapes apart, measured again at a coarse tolerance. (Written when GJK
     // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; gjk.hpp now rejects
@@ -366,10 +357,10 @@ class MotionCaster {
     const Vec3 linear_rel_;        // B's velocity relative to A's (per step)
     const double speed_bound_;     // |d distance / dt| <= this (per step)
     MotionCastStats& stats_;
-    uint32_t iterations_ = 0;  // support evaluations of every query so far
-    double t0_ = 0;            // no contact in [0, t0]
-    Transform pa_, pb_;        // the poses at t0
-    DistanceResult dist_;      // the distance at t0
+    uint32_t iterations_ = 0;    // support evaluations of every query so far
+    double t0_ = 0;              // no contact in [0, t0]
+    Transform pa_, pb_;          // the poses at t0
+    DistanceResult dist_;        // the distance at t0
     double dist_tolerance_ = 0;  // the relative tolerance of the query behind dist_
     Vec3 clip_normal_{};         // world, from A toward B, of the latest clip of a fattened cast
     bool clipped_ = false;
@@ -393,7 +384,7 @@ CastResult motion_cast(const Shape& a, const Motion& ma, const Shape& b, const M
     const double radius_a = bounding_radius(a), radius_b = bounding_radius(b);
     const double size = radius_a > 0 && radius_b > 0 ? std::fmin(radius_a, radius_b) : std::fmax(radius_a, radius_b);
 
-    if (!turns(ma) && !turns(mb)) {
+    if (!ma.rotates() && !mb.rotates()) {
         // Pure translations: the exact shape cast, nothing paid for rotation. It stops with the
         // ray point within eps * max|y| of A - B, and near contact max|y| <= gap + diam(A - B) <=
         // gap + 2 (rA + rB); this eps keeps the gap within delta, as the contract says.

@@ -107,29 +107,24 @@ struct TransformedShape final : Shape {
     Mat3 linear;
     Vec3 translation;
 };
-struct MinkowskiSumShape final : Shape {
-    MinkowskiSumShape(const Shape& a_, const Shape& b_) : Shape(ShapeKind::MinkowskiSum), a(&a_), b(&b_) {
+// A shape made of two others, each kept alive by a reference it holds.
+struct BinaryShape : Shape {
+    BinaryShape(ShapeKind k, const Shape& a_, const Shape& b_) : Shape(k), a(&a_), b(&b_) {
         a->retain();
         b->retain();
     }
-    ~MinkowskiSumShape() override {
+    ~BinaryShape() override {
         a->release();
         b->release();
     }
     const Shape* a;
     const Shape* b;
 };
-struct HullOfTwoShape final : Shape {
-    HullOfTwoShape(const Shape& a_, const Shape& b_) : Shape(ShapeKind::HullOfTwo), a(&a_), b(&b_) {
-        a->retain();
-        b->retain();
-    }
-    ~HullOfTwoShape() override {
-        a->release();
-        b->release();
-    }
-    const Shape* a;
-    const Shape* b;
+struct MinkowskiSumShape final : BinaryShape {
+    MinkowskiSumShape(const Shape& a_, const Shape& b_) : BinaryShape(ShapeKind::MinkowskiSum, a_, b_) {}
+};
+struct HullOfTwoShape final : BinaryShape {
+    HullOfTwoShape(const Shape& a_, const Shape& b_) : BinaryShape(ShapeKind::HullOfTwo, a_, b_) {}
 };
 
 // A flat disk of `radius` centred at the origin, perpendicular to unit `normal`.

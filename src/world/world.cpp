@@ -154,12 +154,8 @@ World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) co
     Sweep s;
     s.start = rigid(o.pose);
     s.translation = motion.linear();
-    // The same orientation (q or -q) is a translation: q_end * q_start^-1 would round to a turn
-    // by an angle of 1e-16 or so.
-    const Quat a = o.pose.orientation, b = o.end.orientation;
-    const bool same = (a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w) ||
-                      (a.x == -b.x && a.y == -b.y && a.z == -b.z && a.w == -b.w);
-    if (same || !motion.rotates()) {
+    // The same orientation (q or -q) is a translation: Motion reads no turn (same_rotation).
+    if (!motion.rotates()) {
         // A box left loose by an earlier turn shrinks to the pose first.
         *out_start = o.loose ? tight_box(*o.shape, o.pose, {}) : o.box;
         *out_end = tight_box(*o.shape, o.end, s.translation);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "gjk/gjk.hpp"
+#include "gjk/simplex.hpp"
 #include "gjk_peer_shapes.hpp"
 #include "shapes/shape.hpp"
 

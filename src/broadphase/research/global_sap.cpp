@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The space-time sweep in one batch per axis (SpacetimeSapGlobal, class SpacetimeSap): each axis
+// The space-time sweep in one batch per axis (SpacetimeSapGlobal, class GlobalSpacetimeSap): each axis
 // brought from its start order to its end order by adjacent swaps, crossings tested exactly.
 #include <algorithm>
 #include <cstddef>
@@ -8,9 +8,10 @@
 #include <memory>
 #include <vector>
 
+#include "broadphase/box_time.hpp"
+#include "broadphase/endpoint_sap.hpp"
 #include "broadphase/factories.hpp"
 #include "broadphase/pair_set.hpp"
-#include "broadphase/research/endpoint_sap.hpp"
 
 namespace kairos {
 
@@ -29,9 +30,9 @@ using broadphase_detail::pair_key;
 // crossing "]a [b" -> "[b ]a" on some axis (the one whose overlap starts last); each such
 // crossing's pair gets first_overlap_time, the exact 4D test brute force runs, so pairs and times
 // equal brute force exactly. Pairs overlapping at t = 0 are the overlap set kept between steps.
-class SpacetimeSap final : public EndpointSap {
+class GlobalSpacetimeSap final : public EndpointSap {
 public:
-    SpacetimeSap() : EndpointSap(BroadPhaseKind::SpacetimeSapGlobal) {}
+    GlobalSpacetimeSap() : EndpointSap(BroadPhaseKind::SpacetimeSapGlobal) {}
 
 private:
     // The end order: by end position, then "[" before "]".
@@ -49,21 +50,13 @@ private:
 
 // "]a" and "[b" swapped, and their spans meet: a and b may start to overlap on this axis during
 // the step. (The sweeps test the spans first, inline: most crossings end there.)
-void SpacetimeSap::crossing(const Endpoint& max_a, const Endpoint& min_b) {
-    uint32_t a = owner(max_a), b = owner(min_b);
-    if (a > b) std::swap(a, b);
-    ++counters_.crossing_tests;
-    const Record& ra = records_[a];
-    const Record& rb = records_[b];
-    double t = 0;
-    if (!first_overlap_time({ra.box, ra.box_end}, {rb.box, rb.box_end}, &t)) return;
-    pairs_.push_back({a, b, t});
-    if (boxes_overlap(ra.box_end, rb.box_end)) entered_.push_back(pair_key(a, b));
+void GlobalSpacetimeSap::crossing(const Endpoint& max_a, const Endpoint& min_b) {
+    test_swept_pair(owner(max_a), owner(min_b), entered_);
 }
 
 // Insertion sort of a whole axis by end position: each endpoint that ends before its left
 // neighbour moves left past every endpoint it crosses. O(n + swaps), sequential memory.
-void SpacetimeSap::sort_axis(int axis) {
+void GlobalSpacetimeSap::sort_axis(int axis) {
     auto& arr = axes_[static_cast<std::size_t>(axis)];
     const std::size_t n = arr.size();
     std::size_t lo = n, hi = 0;
@@ -94,7 +87,7 @@ void SpacetimeSap::sort_axis(int axis) {
 // start, which it truly crosses), so every swap is a true crossing and none is undone later: the
 // swaps are exactly those of the insertion sort. Each endpoint is compared by its current key:
 // max(p0, p1) in the first pass, p1 in the second.
-void SpacetimeSap::bubble_moving(int axis) {
+void GlobalSpacetimeSap::bubble_moving(int axis) {
     auto& arr = axes_[static_cast<std::size_t>(axis)];
     const auto n = static_cast<uint32_t>(arr.size());
     uint64_t swaps = 0;
@@ -146,7 +139,7 @@ void SpacetimeSap::bubble_moving(int axis) {
     counters_.swaps += swaps;
 }
 
-void SpacetimeSap::on_step() {
+void GlobalSpacetimeSap::on_step() {
     // Pairs overlapping at the start; those apart at the end leave the set afterwards.
     doomed_.clear();
     entered_.clear();
@@ -190,7 +183,7 @@ void SpacetimeSap::on_step() {
 
 namespace broadphase_detail {
 
-std::unique_ptr<BroadPhase> make_global_sap() { return std::make_unique<SpacetimeSap>(); }
+std::unique_ptr<BroadPhase> make_global_sap() { return std::make_unique<GlobalSpacetimeSap>(); }
 
 }  // namespace broadphase_detail
 

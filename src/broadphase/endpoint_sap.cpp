@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // EndpointSap: bulk insertion and removal, teleports by adjacent swaps, the overlap set kept by
 // the swaps, and the check of the arrays and the set against brute force.
-#include "broadphase/research/endpoint_sap.hpp"
+#include "broadphase/endpoint_sap.hpp"
 
 #include <algorithm>
 #include <sstream>
 
 #include "broadphase/float_bounds.hpp"
+#include "broadphase/overlap_check.hpp"
 
 namespace kairos::broadphase_detail {
 
@@ -40,11 +41,7 @@ void EndpointSap::on_flush() {
 
     if (!pending_removes_.empty()) {
         auto removed = [&](uint32_t id) { return records_[id].state == State::PendingRemove; };
-        doomed_.clear();
-        overlaps_.for_each([&](uint64_t k) {
-            if (removed(static_cast<uint32_t>(k >> 32)) || removed(static_cast<uint32_t>(k))) doomed_.push_back(k);
-        });
-        for (uint64_t k : doomed_) overlaps_.erase(k);
+        overlaps_.erase_pairs_of(removed, doomed_);
         for (int axis = 0; axis < 3; ++axis) {
             auto& arr = axes_[static_cast<std::size_t>(axis)];
             std::size_t w = 0;
@@ -217,29 +214,12 @@ std::string EndpointSap::check_invariants() const {
             }
         }
     }
-    std::size_t expected = 0;
-    for (std::size_t x = 0; x < present.size(); ++x) {
-        for (std::size_t y = x + 1; y < present.size(); ++y) {
-            const uint32_t a = present[x], b = present[y];
-            if (both_static(a, b)) continue;
-            const bool by_box = boxes_overlap(records_[a].box, records_[b].box);
-            const bool by_index = overlap_on_axis(a, b, 0) && overlap_on_axis(a, b, 1) && overlap_on_axis(a, b, 2);
-            if (by_box != by_index) {
-                why << "pair " << a << "," << b << ": boxes overlap " << by_box << ", indices say " << by_index;
-                return why.str();
-            }
-            if (by_box != overlaps_.contains(pair_key(a, b))) {
-                why << "pair " << a << "," << b << ": boxes overlap " << by_box << ", overlap set says " << !by_box;
-                return why.str();
-            }
-            expected += by_box ? 1 : 0;
-        }
-    }
-    if (expected != overlaps_.size()) {
-        why << "overlap set holds " << overlaps_.size() << " pairs, brute force finds " << expected;
-        return why.str();
-    }
-    return {};
+    return check_overlap_set(present, records_, overlaps_, [&](uint32_t a, uint32_t b, bool by_box, std::ostream& out) {
+        const bool by_index = overlap_on_axis(a, b, 0) && overlap_on_axis(a, b, 1) && overlap_on_axis(a, b, 2);
+        if (by_box != by_index)
+            out << "pair " << a << "," << b << ": boxes overlap " << by_box << ", indices say " << by_index;
+        return by_box == by_index;
+    });
 }
 
 }  // namespace kairos::broadphase_detail

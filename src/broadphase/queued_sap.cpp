@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "broadphase/endpoint_sap.hpp"
 #include "broadphase/factories.hpp"
-#include "broadphase/research/endpoint_sap.hpp"
 
 namespace kairos {
 
