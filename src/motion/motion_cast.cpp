@@ -173,7 +173,7 @@ public:
 private:
     // Distance at the current poses. A FullSimplex claim is checked by a cast with no motion and,
     // when that finds the shapes apart, measured again at a coarse tolerance. (Written when GJK
-    // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; gjk.hpp now rejects
+    // read capsule/cone pairs 1e-6 apart at tolerance 1e-10 as intersecting; the simplex (gjk/simplex.hpp) now rejects
     // flat tetrahedra and sub-simplices below the lower bound, and the motion tests pass without
     // this check. It stays as a cheap second opinion: it runs only on an intersection claim.)
     DistanceResult distance_now(double tol) {
