@@ -45,8 +45,12 @@ private:
         float span[4];  // y lo, y hi, z lo, z hi
         uint32_t id;
     };
-    // The order of a column's entries: by lo, ties by id.
-    static bool entry_less(const Entry& x, const Entry& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); }
+    // The order of a column's entries: by lo, ties by id. A function object, not a function:
+    // std::sort and std::lower_bound then inline it (through a function pointer they may not).
+    struct EntryLess {
+        bool operator()(const Entry& x, const Entry& y) const { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); }
+    };
+    static constexpr EntryLess entry_less{};
     struct Column {
         std::vector<Entry> entries;
         uint32_t visited = 0;  // the pass that last queued it for a sweep
