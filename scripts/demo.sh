@@ -34,8 +34,11 @@ echo
 echo "==== 2. A world of a few thousand moving objects ===="
 mkdir -p build/demo
 build/release/examples/kairos_scene 30 build/demo/kairos_scene
-gnuplot build/demo/kairos_scene.gp
-echo "picture: build/demo/kairos_scene.png"
+if gnuplot build/demo/kairos_scene.gp; then
+    echo "picture: build/demo/kairos_scene.png"
+else
+    echo "gnuplot could not draw build/demo/kairos_scene.png; the raster is build/demo/kairos_scene.ppm" >&2
+fi
 
 if [ "${KAIROS_DEMO_NO_CHART:-0}" != 1 ]; then
     echo
