@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
 // GJK benchmark: Kairos against FCL (GST_INDEP), Bullet f64 (btGjkPairDetector) and libccd on the
 // same pre-generated random queries. Reports time per query (use --benchmark_repetitions and the
-// median aggregate) and mean GJK iterations where the library exposes them.
+// median aggregate) and mean GJK iterations where the library exposes them. Kairos is timed twice:
+// the core's gjk_distance, and kairos_distance as users call it (the C boundary's cost is the
+// difference).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -28,6 +33,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "gjk/gjk.hpp"
+#include "kairos/kairos.h"
 #include "gjk_peer_bullet.hpp"
 #include "gjk_peer_fcl.hpp"
 #include "gjk_peer_shapes.hpp"
@@ -65,6 +71,69 @@ Spec hull32(std::mt19937_64& rng) {
 
 enum Scenario { BoxBox, Hull32, CylinderCone, SphereCapsule, BoxBoxMixed };
 
+// ---- The same queries through the public C API ---------------------------------------------------
+
+struct ShapeRelease {
+    void operator()(kairos_shape* s) const { kairos_shape_release(s); }
+};
+using CShape = std::unique_ptr<kairos_shape, ShapeRelease>;
+
+CShape c_shape(const Spec& s) {
+    kairos_shape* out = nullptr;
+    int32_t status = KAIROS_ERROR_INVALID_ARGUMENT;
+    switch (s.kind) {
+        case Kind::Box:
+            status = kairos_shape_box({s.a, s.b, s.c}, &out);
+            break;
+        case Kind::Sphere:
+            status = kairos_shape_sphere(s.a, &out);
+            break;
+        case Kind::Capsule:
+            status = kairos_shape_capsule(s.a, s.b, &out);
+            break;
+        case Kind::Cylinder:
+            status = kairos_shape_cylinder(s.a, s.b, &out);
+            break;
+        case Kind::Cone:
+            status = kairos_shape_cone(s.a, s.b, &out);
+            break;
+        case Kind::Hull: {
+            std::vector<kairos_vec3> points;
+            for (const Vec3& v : s.verts) points.push_back({v.x, v.y, v.z});
+            status = kairos_shape_convex_hull(points.data(), points.size(), &out);
+            break;
+        }
+    }
+    if (status != KAIROS_OK) {
+        std::fprintf(stderr, "bench_gjk: the C API rejected a shape: %s\n", kairos_last_error());
+        std::abort();
+    }
+    return CShape(out);
+}
+
+// The unit quaternion of a rotation matrix (Shepperd: the largest of w, x, y, z taken first).
+kairos_quat quat_of(const kairos::Mat3& m) {
+    const double tr = m.r[0].x + m.r[1].y + m.r[2].z;
+    if (tr > 0) {
+        const double s = 2 * std::sqrt(tr + 1);
+        return {(m.r[2].y - m.r[1].z) / s, (m.r[0].z - m.r[2].x) / s, (m.r[1].x - m.r[0].y) / s, s / 4};
+    }
+    if (m.r[0].x > m.r[1].y && m.r[0].x > m.r[2].z) {
+        const double s = 2 * std::sqrt(1 + m.r[0].x - m.r[1].y - m.r[2].z);
+        return {s / 4, (m.r[0].y + m.r[1].x) / s, (m.r[0].z + m.r[2].x) / s, (m.r[2].y - m.r[1].z) / s};
+    }
+    if (m.r[1].y > m.r[2].z) {
+        const double s = 2 * std::sqrt(1 + m.r[1].y - m.r[0].x - m.r[2].z);
+        return {(m.r[0].y + m.r[1].x) / s, s / 4, (m.r[1].z + m.r[2].y) / s, (m.r[0].z - m.r[2].x) / s};
+    }
+    const double s = 2 * std::sqrt(1 + m.r[2].z - m.r[0].x - m.r[1].y);
+    return {(m.r[0].z + m.r[2].x) / s, (m.r[1].z + m.r[2].y) / s, s / 4, (m.r[1].x - m.r[0].y) / s};
+}
+
+kairos_pose c_pose(const kairos::Transform& t) {
+    return {{t.translation.x, t.translation.y, t.translation.z}, quat_of(t.rotation)};
+}
+
 struct Query {
     Spec a, b;
     gjk_test::ShapePtr ka, kb;
@@ -72,6 +141,8 @@ struct Query {
     std::unique_ptr<btConvexShape> ba, bb;
     btTransform ta, tb;
     Vec3 axis_cache;
+    CShape ca, cb;  // the shapes and poses through the C API
+    kairos_pose pa, pb;
 };
 
 std::vector<Query>& queries(Scenario sc) {
@@ -109,6 +180,17 @@ std::vector<Query>& queries(Scenario sc) {
         x.ba = bullet_shape(x.a), x.bb = bullet_shape(x.b);
         x.ta = bullet_transform(x.a.pose), x.tb = bullet_transform(x.b.pose);
         x.axis_cache = {};
+        x.ca = c_shape(x.a), x.cb = c_shape(x.b);
+        x.pa = c_pose(x.a.pose), x.pb = c_pose(x.b.pose);
+        // The C API must answer the core's query: same shapes, same poses up to rounding.
+        kairos_distance_result r;
+        const DistanceResult core = gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256);
+        if (kairos_distance(x.ca.get(), &x.pa, x.cb.get(), &x.pb, nullptr, &r) != KAIROS_OK ||
+            !(std::fabs(r.distance - core.distance) <= 1e-9 * (1 + core.distance))) {
+            std::fprintf(stderr, "bench_gjk: the C API and the core disagree (%.17g against %.17g)\n", r.distance,
+                         core.distance);
+            std::abort();
+        }
     }
     return q;
 }
@@ -127,6 +209,25 @@ void BM_KairosDistance(benchmark::State& state) {
         i = (i + 1) % q.size();
     }
     state.counters["gjk_iterations"] = double(iters) / double(n);
+}
+
+// The same queries as users make them: kairos_distance on C shapes and poses (checks, quaternion
+// to matrix, result conversion included).
+void BM_KairosCapiDistance(benchmark::State& state) {
+    auto& q = queries(static_cast<Scenario>(state.range(0)));
+    kairos_query_settings settings;
+    kairos_query_settings_init(&settings);
+    settings.tolerance = kTolerance;
+    settings.max_iterations = 256;
+    size_t i = 0;
+    for (auto _ : state) {
+        const Query& x = q[i];
+        kairos_distance_result r;
+        const int32_t status = kairos_distance(x.ca.get(), &x.pa, x.cb.get(), &x.pb, &settings, &r);
+        benchmark::DoNotOptimize(status);
+        benchmark::DoNotOptimize(r);
+        i = (i + 1) % q.size();
+    }
 }
 
 void BM_FclDistanceGstIndep(benchmark::State& state) {
@@ -220,6 +321,7 @@ void scenarios(benchmark::internal::Benchmark* b) {
 
 // scenario: 0 box/box, 1 hull32/hull32, 2 cylinder/cone, 3 sphere/capsule.
 BENCHMARK(BM_KairosDistance)->Apply(scenarios);
+BENCHMARK(BM_KairosCapiDistance)->Apply(scenarios);
 BENCHMARK(BM_FclDistanceGstIndep)->Apply(scenarios);
 BENCHMARK(BM_BulletF64Distance)->Apply(scenarios);
 // cached: 0 fresh start, 1 the axis cached from this query's previous run.

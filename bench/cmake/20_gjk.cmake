@@ -15,7 +15,7 @@ if(KAIROS_BENCH_FCL_FOUND AND KAIROS_BENCH_CCD_FOUND AND KAIROS_BENCH_BULLET64_F
     target_include_directories(bench_gjk SYSTEM PRIVATE ${KAIROS_BENCH_FCL_INCLUDE_DIRS} ${KAIROS_BENCH_CCD_INCLUDE_DIRS}
                                                         ${KAIROS_BENCH_BULLET64_INCLUDE_DIRS})
     target_compile_definitions(bench_gjk PRIVATE BT_USE_DOUBLE_PRECISION)
-    target_link_libraries(bench_gjk PRIVATE kairos_core benchmark::benchmark ${KAIROS_BENCH_FCL_LINK_LIBRARIES}
+    target_link_libraries(bench_gjk PRIVATE kairos::kairos kairos_core benchmark::benchmark ${KAIROS_BENCH_FCL_LINK_LIBRARIES}
                                             ${KAIROS_BENCH_CCD_LINK_LIBRARIES} ${KAIROS_BENCH_BULLET64_COLLISION}
                                             ${KAIROS_BENCH_BULLET64_MATH})
     kairos_warnings(bench_gjk)

@@ -18,7 +18,6 @@ namespace kairos {
 namespace {
 
 using broadphase_detail::EndpointSap;
-using broadphase_detail::pair_key;
 
 // ---- Space-time sweep in one batch per axis ---------------------------------------------------
 //
