@@ -33,10 +33,10 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "gjk/gjk.hpp"
-#include "kairos/kairos.h"
 #include "gjk_peer_bullet.hpp"
 #include "gjk_peer_fcl.hpp"
 #include "gjk_peer_shapes.hpp"
+#include "kairos/kairos.h"
 
 using namespace kairos;
 using peer::bullet_shape;
@@ -99,7 +99,7 @@ CShape c_shape(const Spec& s) {
             break;
         case Kind::Hull: {
             std::vector<kairos_vec3> points;
-            for (const Vec3& v : s.verts) points.push_back({v.x, v.y, v.z});
+            for (const auto& v : s.verts) points.push_back({v[0], v[1], v[2]});
             status = kairos_shape_convex_hull(points.data(), points.size(), &out);
             break;
         }

@@ -74,9 +74,16 @@ void require_finite_result(bool finite, const char* function) {
 
 BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name) {
     if (pose == nullptr) return {};
-    char field[96];
-    std::snprintf(field, sizeof field, "%s.position", name);
-    const Vec3 position = read_point(pose->position, function, field);
+    const kairos_vec3& p = pose->position;
+    auto ok = [](double x) { return std::isfinite(x) && std::fabs(x) <= KAIROS_MAX_MAGNITUDE; };
+    if (!(ok(p.x) && ok(p.y) && ok(p.z))) {
+        // The field's name is formatted only on this path: formatted on every call it cost more
+        // than the rest of the boundary of a kairos_distance together.
+        char field[96];
+        std::snprintf(field, sizeof field, "%s.position", name);
+        read_point(p, function, field);  // fails, naming the coordinate
+    }
+    const Vec3 position{p.x, p.y, p.z};
     const kairos_quat& q = pose->orientation;
     const double c[4] = {q.x, q.y, q.z, q.w};
     static const char* const part[4] = {"x", "y", "z", "w"};
