@@ -12,6 +12,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace kairos {
 namespace {
@@ -237,8 +238,17 @@ private:
         if (!(vw > offset)) return true;  // NaN fails and does not clip
         const double vr = dot(v_, r_);
         if (!(vr < 0)) return false;
-        lambda_ -= (vw - offset) / vr;
-        if (!(lambda_ <= 1)) return false;
+        double next = lambda_ - (vw - offset) / vr;
+        if (!(next <= 1)) {
+            // The plane's offset v.w carries rounding of a few eps |v| (|x| + |p|), which can be far
+            // above the overlap when C is huge beside the other shape (a slab 1e19 wide and a unit
+            // sphere ending 4 inside it): a crossing past 1 by less than that rounding is read as
+            // reaching the step's end, so an entry there is never missed.
+            const double rounding = 4 * std::numeric_limits<double>::epsilon() * std::sqrt(dot(v_, v_)) * (max_abs(x_) + max_abs(p) + margin_);
+            if (!(next <= 1 + rounding / -vr)) return false;
+            next = 1;
+        }
+        lambda_ = next;
         const Vec3 x_new = s_ + lambda_ * r_;
         normal_ = v_;
         clipped_ = true;

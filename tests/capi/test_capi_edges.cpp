@@ -10,6 +10,7 @@
 // shapes and the distance apart; an intersecting answer by its contact point lying in both shapes.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -893,6 +894,101 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
     // Both verdicts occur in quantity (the negative gaps overlap).
     EXPECT_GT(t.intersecting, t.cases / 5);
     EXPECT_GT(t.separated, t.cases / 3);
+}
+
+
+// A fuzz_world finding: a unit ball travelling 1.5e11 ends inside a box of half extents 6.7e19, 3.28
+// and 6.7e10. The ball's overlap at the end (about 4) is far below the rounding of a support plane
+// 6.7e19 out, so the last clip crossed lambda = 1 by that rounding and the cast reported a miss.
+// Truth in long double, in the box's frame: the centre's entry into the box itself (the ball enters
+// no later: a hit must come by then) and the ball's distance to the box at the reported toi (within
+// 1e-9 of the pair's size, the accuracy the library states: here 6.7e10; the box-moving order stops
+// about 4e10 short, since the loop's tolerances are relative to the simplex's size). A miss is wrong
+// only when the centre enters the box. The motion is scaled
+// around the finding's so that the entry falls within 1e-12 .. 1e-5 of the step's end, on both
+// sides of it, in both argument orders.
+TEST(GjkEdges, CastIntoAHugeSlabNeverMissesAnEntryAtTheStepsEnd) {
+    const V half{6.7030899519340806e+19, 3.279560540169375, 67030899519.340813};
+    const V start{99999999999, -100000000001, 49999999999};
+    const V end{-3.7108110170138096, -3.99487296864271, -4};
+    const V box_at{-4, -4, -3.4321202410925462};
+    const double q[4] = {0.49327263250092857, 0.060854646124513738, -0.49041242649878691, 0.71587322481444715};
+    kairos_shape *ball = nullptr, *slab = nullptr;
+    ASSERT_EQ(kairos_shape_sphere(1, &ball), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_box(kv(half), &slab), KAIROS_OK);
+    const kairos_pose box_pose{kv(box_at), {q[0], q[1], q[2], q[3]}};
+    // The box's rotation (the library normalises the quaternion; so does this).
+    const long double n = std::sqrt((long double)q[0] * q[0] + (long double)q[1] * q[1] +
+                                    (long double)q[2] * q[2] + (long double)q[3] * q[3]);
+    const long double x = q[0] / n, y = q[1] / n, z = q[2] / n, w = q[3] / n;
+    const long double m[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+                              2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                              2 * (x * z - y * w),     2 * (y * z + x * w), 1 - 2 * (x * x + y * y)};
+    auto local = [&](V p) {  // R^T (p - box_at)
+        const long double d[3] = {(long double)p.x - box_at.x, (long double)p.y - box_at.y,
+                                  (long double)p.z - box_at.z};
+        std::array<long double, 3> l{};
+        for (int i = 0; i < 3; ++i) l[i] = m[i] * d[0] + m[3 + i] * d[1] + m[6 + i] * d[2];
+        return l;
+    };
+    const long double h[3] = {half.x, half.y, half.z};
+    // Entry time of the centre's path p0 + t d (t in [0, 1]) into the box; 2 when there is none.
+    auto entry = [&](V p0, V d) {
+        const auto pl = local(p0);
+        const auto e = local(p0 + d);
+        long double t0 = 0, t1 = 1;
+        for (int i = 0; i < 3; ++i) {
+            const long double dl = e[i] - pl[i];
+            if (dl == 0) {
+                if (std::fabs(pl[i]) > h[i]) return 2.0L;
+                continue;
+            }
+            long double a = (-h[i] - pl[i]) / dl, b = (h[i] - pl[i]) / dl;
+            if (a > b) std::swap(a, b);
+            t0 = std::max(t0, a), t1 = std::min(t1, b);
+        }
+        return t0 <= t1 ? t0 : 2.0L;
+    };
+    auto gap = [&](V centre) {  // the ball's distance to the box (0 when they overlap)
+        const auto l = local(centre);
+        long double sq = 0;
+        for (int i = 0; i < 3; ++i) {
+            const long double out = std::fabs(l[i]) - h[i];
+            if (out > 0) sq += out * out;
+        }
+        return std::max(0.0L, std::sqrt(sq) - 1);
+    };
+    const long double band = 1e-9L * half.x;
+    int hits = 0, misses = 0;
+    for (double k : {1.0, 1 - 1e-5, 1 - 1e-8, 1 - 1e-10, 1 - 1e-12, 1 + 1e-12, 1 + 1e-10, 1 + 1e-9, 1 + 1e-8,
+                     1 + 3e-8, 1 + 1e-7, 1 + 1e-6, 1.5, 0.5}) {
+        const V motion = k * (end - start);
+        const long double late = entry(start, motion);
+        for (int order = 0; order < 2; ++order) {
+            SCOPED_TRACE(testing::Message() << "motion scaled by 1 + " << (k - 1) << (order ? ", box moves" : ""));
+            const kairos_pose bp{kv(start), {0, 0, 0, 1}};
+            kairos_cast_result c{};
+            const int32_t st =
+                order == 0 ? kairos_shape_cast(ball, &bp, kv(motion), slab, &box_pose, {0, 0, 0}, nullptr, &c)
+                           : kairos_shape_cast(slab, &box_pose, kv(-motion), ball, &bp, {0, 0, 0}, nullptr, &c);
+            ASSERT_EQ(st, KAIROS_OK) << kairos_last_error();
+            if (late <= 1) {
+                ASSERT_EQ(c.hit, 1) << "the centre enters the box at " << (double)late;
+                // Never late beyond the support planes' rounding (about 1e-7 of this motion).
+                EXPECT_LE(c.toi, (double)late + 1e-6);
+            }
+            if (c.hit) {
+                ++hits;
+                EXPECT_LE(gap(start + c.toi * motion), band);
+            } else {
+                ++misses;
+            }
+        }
+    }
+    EXPECT_GE(hits, 8);
+    EXPECT_GE(misses, 2);
+    kairos_shape_release(ball);
+    kairos_shape_release(slab);
 }
 
 }  // namespace
