@@ -72,7 +72,7 @@ void require_finite_result(bool finite, const char* function) {
              "KAIROS_MAX_MAGNITUDE): no finite result");
 }
 
-BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name) {
+BodyPose read_pose_checked(const kairos_pose* pose, const char* function, const char* name) {
     if (pose == nullptr) return {};
     const kairos_vec3& p = pose->position;
     auto ok = [](double x) { return std::isfinite(x) && std::fabs(x) <= KAIROS_MAX_MAGNITUDE; };
@@ -98,13 +98,11 @@ BodyPose read_pose(const kairos_pose* pose, const char* function, const char* na
         fail(KAIROS_ERROR_INVALID_ARGUMENT, function,
              "%s.orientation must be a unit quaternion within %g (its length is %.17g)", name, KAIROS_QUAT_TOLERANCE,
              n);
-    return {position, normalized(quat)};
+    return {position, unit_quat(q, q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w)};
 }
 
-QuerySettings read_query_settings(const kairos_query_settings* s, const char* function, const char* name) {
-    kairos_query_settings defaults;
-    kairos_query_settings_init(&defaults);
-    if (s == nullptr) s = &defaults;
+QuerySettings read_query_settings_checked(const kairos_query_settings* s, const char* function, const char* name) {
+    if (s == nullptr) return kDefaultQuerySettings;
     if (s->struct_size != sizeof(kairos_query_settings))
         fail(KAIROS_ERROR_STRUCT_SIZE, function,
              "%s->struct_size must be %zu (got %u); call kairos_query_settings_init", name,

@@ -90,14 +90,58 @@ struct BodyPose {
     Quat orientation;
     Transform rigid() const { return make_transform(position, orientation); }
 };
-BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name);
+// Every check with its message; read_pose takes it only for input its fast test cannot pass.
+BodyPose read_pose_checked(const kairos_pose* pose, const char* function, const char* name);
+// q scaled to unit length, nn = its squared length (> 0), exactly as kairos::normalized does.
+inline Quat unit_quat(const kairos_quat& q, double nn) {
+    const double n = std::sqrt(nn);
+    return {q.x / n, q.y / n, q.z / n, q.w / n};
+}
+// NULL is the identity pose. Inline: the test below decides almost every call with a few
+// comparisons, accepting only poses the full checks accept (|n - 1| <= |n^2 - 1| for a length
+// n >= 0; NaN and infinities fail every comparison), so both paths give one result.
+inline BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name) {
+    if (pose != nullptr) {
+        const kairos_vec3& p = pose->position;
+        const kairos_quat& q = pose->orientation;
+        const double nn = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+        if (std::fabs(p.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(p.y) <= KAIROS_MAX_MAGNITUDE &&
+            std::fabs(p.z) <= KAIROS_MAX_MAGNITUDE && std::fabs(nn - 1) <= KAIROS_QUAT_TOLERANCE)
+            return {{p.x, p.y, p.z}, unit_quat(q, nn)};
+    }
+    return read_pose_checked(pose, function, name);
+}
+// The same checks, for the queries that need only the rigid transform. The quaternion is
+// normalised as read_pose does (four divisions, not a reciprocal: folding the normalisation into
+// the matrix, or multiplying by 1/n, moves answers at the rounding limit by an ulp of the
+// rotation, which GjkEdges' sweep showed can move a touching contact point by 1.5e-10 of the size).
+[[gnu::always_inline]] inline Transform read_transform(const kairos_pose* pose, const char* function, const char* name) {
+    if (pose == nullptr) return {};
+    const kairos_vec3& p = pose->position;
+    const kairos_quat& q = pose->orientation;
+    const double nn = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+    if (!(std::fabs(p.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(p.y) <= KAIROS_MAX_MAGNITUDE &&
+          std::fabs(p.z) <= KAIROS_MAX_MAGNITUDE && std::fabs(nn - 1) <= KAIROS_QUAT_TOLERANCE))
+        read_pose_checked(pose, function, name);  // fails with the message, or accepts the pose
+    return {to_matrix(unit_quat(q, nn)), {p.x, p.y, p.z}};
+}
 
 // Query settings (frozen struct: struct_size must equal its size). NULL means defaults.
 struct QuerySettings {
     double tolerance;
     uint32_t max_iterations;
 };
-QuerySettings read_query_settings(const kairos_query_settings* s, const char* function, const char* name);
+// The defaults of kairos_query_settings_init.
+inline constexpr QuerySettings kDefaultQuerySettings{1e-10, 256};
+QuerySettings read_query_settings_checked(const kairos_query_settings* s, const char* function, const char* name);
+// NULL means the defaults. Inline for the same reason as read_pose: valid settings pass one test.
+inline QuerySettings read_query_settings(const kairos_query_settings* s, const char* function, const char* name) {
+    if (s == nullptr) return kDefaultQuerySettings;
+    if (s->struct_size == sizeof(kairos_query_settings) && s->tolerance > 0 && s->tolerance < 1 &&
+        s->max_iterations >= 1)
+        return {s->tolerance, s->max_iterations};
+    return read_query_settings_checked(s, function, name);
+}
 
 // Growing input struct: struct_size >= `known` (the first published size); bytes past `known`
 // up to struct_size must be zero (a newer caller's fields this library does not know).

@@ -47,8 +47,8 @@ extern "C" {
 KAIROS_API void kairos_query_settings_init(kairos_query_settings* s) {
     if (s == nullptr) return;
     s->struct_size = sizeof(kairos_query_settings);
-    s->tolerance = 1e-10;
-    s->max_iterations = 256;
+    s->tolerance = capi::kDefaultQuerySettings.tolerance;
+    s->max_iterations = capi::kDefaultQuerySettings.max_iterations;
 }
 
 KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pose_a, const kairos_shape* b,
@@ -57,24 +57,29 @@ KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pos
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(a, fn, "a");
-        const BodyPose pa = read_pose(pose_a, fn, "pose_a");
+        const Transform pa = read_transform(pose_a, fn, "pose_a");
         require_pointer(b, fn, "b");
-        const BodyPose pb = read_pose(pose_b, fn, "pose_b");
+        const Transform pb = read_transform(pose_b, fn, "pose_b");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
         const DistanceResult r =
-            gjk_distance(shape_of(a), pa.rigid(), shape_of(b), pb.rigid(), qs.tolerance, qs.max_iterations);
-        require_finite_result(
-            std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
-        kairos_distance_result res;
-        res.distance = r.distance;
-        res.point_a = to_c(r.point_a);
-        res.point_b = to_c(r.point_b);
-        res.axis = to_c(r.axis);
-        res.intersecting = r.intersecting ? 1 : 0;
-        res.iterations = r.iterations;
-        res.termination = static_cast<int32_t>(r.termination);
-        *out = res;
+            gjk_distance(shape_of(a), pa, shape_of(b), pb, qs.tolerance, qs.max_iterations);
+        // One sum decides the common case: finite parts below 1e101 cannot add up to an overflow,
+        // so a non-finite sum means a non-finite part, or (never in range) an overflow that the
+        // full test then clears.
+        const double sum = r.distance + r.point_a.x + r.point_a.y + r.point_a.z + r.point_b.x + r.point_b.y +
+                           r.point_b.z + r.axis.x + r.axis.y + r.axis.z;
+        if (!std::isfinite(sum))
+            require_finite_result(
+                std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
+        // Every check has passed: nothing below can fail, so *out is written in place.
+        out->distance = r.distance;
+        out->point_a = to_c(r.point_a);
+        out->point_b = to_c(r.point_b);
+        out->axis = to_c(r.axis);
+        out->intersecting = r.intersecting ? 1 : 0;
+        out->iterations = r.iterations;
+        out->termination = static_cast<int32_t>(r.termination);
     });
 }
 
@@ -83,15 +88,15 @@ KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* po
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(a, fn, "a");
-        const BodyPose pa = read_pose(pose_a, fn, "pose_a");
+        const Transform pa = read_transform(pose_a, fn, "pose_a");
         require_pointer(b, fn, "b");
-        const BodyPose pb = read_pose(pose_b, fn, "pose_b");
+        const Transform pb = read_transform(pose_b, fn, "pose_b");
         require_pointer(out, fn, "out");
         // A missing, zero or non-finite cached axis is a fresh start, not an error.
         Vec3 axis{};
         if (axis_cache != nullptr) axis = {axis_cache->x, axis_cache->y, axis_cache->z};
         if (!is_finite(axis)) axis = {};
-        const bool hit = gjk_intersect(shape_of(a), pa.rigid(), shape_of(b), pb.rigid(), axis, nullptr);
+        const bool hit = gjk_intersect(shape_of(a), pa, shape_of(b), pb, axis, nullptr);
         *out = hit ? 1 : 0;
         if (axis_cache != nullptr && !hit) *axis_cache = to_c(axis);
     });
@@ -103,12 +108,12 @@ KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pos
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(s, fn, "s");
-        const BodyPose p = read_pose(pose, fn, "pose");
+        const Transform p = read_transform(pose, fn, "pose");
         const Vec3 o = read_point(origin, fn, "origin");
         const Vec3 t = read_point(translation, fn, "translation");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        *out = checked(kairos::ray_cast(shape_of(s), p.rigid(), o, t, qs.tolerance, qs.max_iterations), fn);
+        *out = checked(kairos::ray_cast(shape_of(s), p, o, t, qs.tolerance, qs.max_iterations), fn);
     });
 }
 
@@ -118,14 +123,14 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(a, fn, "a");
-        const BodyPose pa = read_pose(pose_a, fn, "pose_a");
+        const Transform pa = read_transform(pose_a, fn, "pose_a");
         const Vec3 ta = read_point(translation_a, fn, "translation_a");
         require_pointer(b, fn, "b");
-        const BodyPose pb = read_pose(pose_b, fn, "pose_b");
+        const Transform pb = read_transform(pose_b, fn, "pose_b");
         const Vec3 tb = read_point(translation_b, fn, "translation_b");
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
-        *out = checked(kairos::shape_cast(shape_of(a), pa.rigid(), ta, shape_of(b), pb.rigid(), tb, qs.tolerance,
+        *out = checked(kairos::shape_cast(shape_of(a), pa, ta, shape_of(b), pb, tb, qs.tolerance,
                                           qs.max_iterations),
                        fn);
     });

@@ -202,11 +202,11 @@ KAIROS_API int32_t kairos_shape_bounds(const kairos_shape* s, const kairos_pose*
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(s, fn, "s");
-        const BodyPose p = read_pose(pose, fn, "pose");
+        const Transform p = read_transform(pose, fn, "pose");
         require_pointer(min, fn, "min");
         require_pointer(max, fn, "max");
         Vec3 lo, hi;
-        bounds(shape_of(s), p.rigid(), lo, hi);
+        bounds(shape_of(s), p, lo, hi);
         *min = to_c(lo);
         *max = to_c(hi);
     });

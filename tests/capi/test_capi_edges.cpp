@@ -237,19 +237,22 @@ struct Posed {
 
 // Is p within eps of the posed shape? Checked on the support planes of 26 fixed directions and
 // of `extra` (necessary, not sufficient: it catches points far off, as in the issue).
-bool near_shape(const Posed& s, V p, V extra, double eps) {
+// How far p lies outside the shape along the 26 test directions and `extra` (<= 0: inside them all).
+double off_shape(const Posed& s, V p, V extra) {
     std::vector<V> dirs{extra};
     for (int x = -1; x <= 1; ++x)
         for (int y = -1; y <= 1; ++y)
             for (int z = -1; z <= 1; ++z)
                 if (x || y || z) dirs.push_back({double(x), double(y), double(z)});
+    double worst = -INFINITY;
     for (V d : dirs) {
         if (!(norm(d) > 0)) continue;
         d = unit(d);
-        if (dot(p, d) > s.h(d) + eps) return false;
+        worst = std::max(worst, dot(p, d) - s.h(d));
     }
-    return true;
+    return worst;
 }
+bool near_shape(const Posed& s, V p, V extra, double eps) { return !(off_shape(s, p, extra) > eps); }
 
 struct Tally {
     int separated = 0, intersecting = 0, cases = 0;
@@ -295,7 +298,9 @@ void check_pair(const Posed& a, const Posed& b, V n, double g, double size, bool
         ++t.intersecting;
         check(g < band, "intersecting-at-gap", fmt("gap %.3g %.0g", g, 0));
         check(r.distance == 0, "intersecting-distance", fmt("distance %.3g %.0g", r.distance, 0));
-        check(near_shape(a, qa, n, tol) && near_shape(b, qa, -n, tol), "contact-point", "off a shape");
+        check(near_shape(a, qa, n, tol) && near_shape(b, qa, -n, tol), "contact-point",
+              fmt("off a shape by %.3g of the size (allowed %.0g)",
+                  std::max(off_shape(a, qa, n), off_shape(b, qa, -n)) / size, tol / size));
     } else {
         ++t.separated;
         // The answer's own certificate: the support planes along its axis are at least distance -
