@@ -2,6 +2,7 @@
 // GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"
+#include "gjk/closed_forms.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
@@ -324,6 +325,41 @@ inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
     return normalized_or(a, normalized_or(fallback, {1, 0, 0}));
 }
 
+// Pairs whose cores are points or segments (spheres, capsules, points, segments) have a closed
+// form: no GJK loop, one "iteration", exact to rounding.
+inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core == Core::Segment; }
+
+// The cores' closest points in A's frame (the loop's LocalDistance, at the caller's scale);
+// center_offset receives B's origin in A's frame.
+LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
+                                 const Transform& pose_b, Vec3& center_offset) {
+    const RelativeFrame f = relative_frame(pose_a, pose_b);
+    center_offset = f.t;
+    const double ha = ca.core == Core::Segment ? segment_half_length(*ca.shape) : 0;
+    const double hb = cb.core == Core::Segment ? segment_half_length(*cb.shape) : 0;
+    const Vec3 d = f.r.col(2);
+    const closed_form::SegmentPair cp = closed_form::closest_points(ha, f.t, d, hb);
+    const Vec3 gap = cp.q - cp.p;  // from A's core toward B's
+    LocalDistance l{};
+    l.core = closed_form::safe_length(gap);
+    l.v = -gap;
+    l.point_a = cp.p;
+    l.point_b = cp.q;
+    const double margin = ca.radius + cb.radius;
+    if (l.core > 0) {
+        const closed_form::Axis axis = closed_form::separating_axis(ha, f.t, d, hb, gap, l.core);
+        l.unit = axis.n;
+        // Apart only when the axis proves it: the cores' shadows on it, grown by the radii, do not
+        // meet. Closer than that is touching within rounding, as GJK's own rule reads it.
+        l.intersecting = !(l.core > margin && axis.sep > margin);
+    } else {
+        l.intersecting = true;
+    }
+    l.iterations = 1;
+    l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
+    return l;
+}
+
 }  // namespace
 
 DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
@@ -332,10 +368,13 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     const CoreOf ca = classify(a), cb = classify(b);
     const double radius_a = ca.radius, radius_b = cb.radius;
     Vec3 center_offset;
-    const LocalDistance l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
-        center_offset = pair.t;
-        return distance_loop(pair, margin, tolerance, max_iterations);
-    });
+    const LocalDistance l =
+        line_core(ca) && line_core(cb)
+            ? line_core_distance(ca, pose_a, cb, pose_b, center_offset)
+            : with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
+                  center_offset = pair.t;
+                  return distance_loop(pair, margin, tolerance, max_iterations);
+              });
 
     DistanceResult r;
     r.iterations = l.iterations;
@@ -368,10 +407,18 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
 
 bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Vec3& io_axis,
                    uint32_t* out_iterations) {
+    const CoreOf ca = classify(a), cb = classify(b);
+    if (line_core(ca) && line_core(cb)) {
+        Vec3 center_offset;
+        const LocalDistance l = line_core_distance(ca, pose_a, cb, pose_b, center_offset);
+        if (!l.intersecting) io_axis = world_direction(pose_a, l.unit);
+        if (out_iterations) *out_iterations = 1;
+        return l.intersecting;
+    }
     uint32_t it = 0;
     Vec3 v_local = -pose_a.to_local_direction(io_axis);
     const bool usable = is_finite(v_local) && dot(v_local, v_local) > 0 && std::isfinite(dot(v_local, v_local));
-    bool hit = with_pair(classify(a), pose_a, classify(b), pose_b, [&](const auto& pair, double margin) {
+    bool hit = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
         if (!usable) {
             v_local = -pair.t;
             if (!(dot(v_local, v_local) > 0)) v_local = {1, 0, 0};

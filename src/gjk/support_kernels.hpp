@@ -172,6 +172,12 @@ inline CoreOf classify(const Shape& s) {
     }
 }
 
+// Half length along local z of a Core::Segment's shape (a capsule or a segment).
+inline double segment_half_length(const Shape& s) {
+    return s.kind() == ShapeKind::Capsule ? static_cast<const CapsuleShape&>(s).half_height
+                                          : static_cast<const SegmentShape&>(s).half_length;
+}
+
 template <class Fn>
 auto with_support(const CoreOf& c, Fn&& fn) {
     const Shape& s = *c.shape;
@@ -179,8 +185,7 @@ auto with_support(const CoreOf& c, Fn&& fn) {
         case Core::Point:
             return fn(PointSupport{});
         case Core::Segment:
-            return fn(SegmentSupport{s.kind() == ShapeKind::Capsule ? static_cast<const CapsuleShape&>(s).half_height
-                                                                    : static_cast<const SegmentShape&>(s).half_length});
+            return fn(SegmentSupport{segment_half_length(s)});
         case Core::Box:
             return fn(BoxSupport{static_cast<const BoxShape&>(s).half_extents});
         case Core::SmallHull: {

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// Closed forms for the pairs whose cores are points or segments (spheres, capsules, points and
+// segments among themselves): the distance between two segments, with no GJK iteration. Internal.
+#pragma once
+
+#include "math/math.hpp"
+
+#include <cmath>
+
+namespace kairos::closed_form {
+
+// Closest points of segment P = {s e_z : |s| <= ha} (A's core, in A's frame) and segment
+// Q = {c + u d : |u| <= hb} (B's core in A's frame; d unit, c its centre). ha or hb 0 makes a point.
+struct SegmentPair {
+    Vec3 p, q;    // closest points on P and Q
+    double s, u;  // their parameters: p = s e_z, q = c + u d
+};
+
+inline double clamp_to(double x, double h) { return x < -h ? -h : (x > h ? h : x); }
+
+// The squared distance |c + u d - s e_z|^2 is convex in (s, u). Its minimiser over the rectangle:
+// s from the unconstrained minimum (the lines' common perpendicular) clamped to P, u the point of
+// Q nearest p(s) clamped to Q, and when that clamp acted, s again as the point of P nearest q(u)
+// (Ericson, Real-Time Collision Detection §5.1.9, in this frame). The unconstrained s is
+// s = c.z - d.z (d.x c.x + d.y c.y) / (d.x^2 + d.y^2): both factors are of the order of the sine
+// of the angle between the segments and are computed without cancellation, so for nearly parallel
+// segments s is off by about eps |c| / sin along a valley whose slope is sin: the distance stays
+// within about eps |c| (the textbook (c.z - b d.c) / (1 - b^2) cancels to eps |c| / sin^2, which
+// put the distance off by eps |c| / sin, 1e-7 at a tilt of 1e-9). For parallel segments (and a
+// point A) s starts at 0, and the two projections that follow find a closest pair. d need not be
+// exactly unit.
+inline SegmentPair closest_points(double ha, Vec3 c, Vec3 d, double hb) {
+    const double across = d.x * d.x + d.y * d.y;  // |e_z x d|^2
+    const double dd = across + d.z * d.z;
+    double s = 0;
+    if (across > 0 && ha > 0) s = clamp_to(c.z - d.z * ((d.x * c.x + d.y * c.y) / across), ha);
+    const double u_free = (s * d.z - dot(d, c)) / dd;
+    const double u = clamp_to(u_free, hb);
+    if (u != u_free || across == 0) s = clamp_to(c.z + u * d.z, ha);
+    return {{0, 0, s}, c + u * d, s, u};
+}
+
+// Separation of P and Q along unit n: min over Q of n.x - max over P of n.x.
+inline double separation(Vec3 n, double ha, Vec3 c, Vec3 d, double hb) {
+    return dot(n, c) - hb * std::fabs(dot(n, d)) - ha * std::fabs(n.z);
+}
+
+struct Axis {
+    Vec3 n;      // unit, from P toward Q
+    double sep;  // separation(n): a lower bound of the distance, to rounding
+};
+
+// The unit axis from P toward Q given gap = q - p (non-zero, |gap| = len), chosen to prove the
+// separation. gap / len alone is tilted by the rounding of the subtraction (eps |c| absolute, far
+// above the gap when the segments nearly touch), and a tilt t toward a segment's direction widens
+// its shadow by h t, so it would not separate them. The exact axis is perpendicular to each
+// segment whose closest point is interior (and to both when they are parallel, where any point of
+// the overlap is closest): the candidates are gap / len with its component along e_z, along d, or
+// both taken out, and the one that separates best is kept.
+inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 gap, double len) {
+    Axis best{gap / len, separation(gap / len, ha, c, d, hb)};
+    auto consider = [&](Vec3 n) {
+        const double m = dot(n, n);
+        if (!(m > 0.25)) return;  // (nearly) nothing left of the gap's direction
+        n = (1 / std::sqrt(m)) * n;
+        const double sep = separation(n, ha, c, d, hb);
+        if (sep > best.sep) best = {n, sep};
+    };
+    const Vec3 n0 = best.n;
+    if (hb > 0) consider(n0 - dot(n0, d) * d);
+    if (ha > 0) {
+        const Vec3 na{n0.x, n0.y, 0};
+        consider(na);
+        // Along d made orthogonal to e_z as well (the segments' common perpendicular).
+        const Vec3 dd{d.x, d.y, 0};
+        const double l2 = dot(dd, dd);
+        if (hb > 0 && l2 > 0) consider(na - (dot(na, dd) / l2) * dd);
+    }
+    return best;
+}
+
+// |a| without overflow or underflow of its square (the cores may lie 1e100 apart, or 1e-200).
+inline double safe_length(Vec3 a) {
+    const double nn = dot(a, a);
+    if (nn > 1e-200 && nn < 1e200) return std::sqrt(nn);
+    const double m = max_abs(a);
+    return m > 0 ? m * length(a / m) : 0.0;
+}
+
+}  // namespace kairos::closed_form
