@@ -333,12 +333,13 @@ inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core 
 // center_offset receives B's origin in A's frame.
 LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
                                  const Transform& pose_b, Vec3& center_offset) {
-    const RelativeFrame f = relative_frame(pose_a, pose_b);
-    center_offset = f.t;
+    // Only B's centre and axis in A's frame are needed, not the whole relative rotation.
+    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    center_offset = t;
     const double ha = ca.core == Core::Segment ? segment_half_length(*ca.shape) : 0;
     const double hb = cb.core == Core::Segment ? segment_half_length(*cb.shape) : 0;
-    const Vec3 d = f.r.col(2);
-    const closed_form::SegmentPair cp = closed_form::closest_points(ha, f.t, d, hb);
+    const Vec3 d = pose_a.to_local_direction(pose_b.rotation.col(2));
+    const closed_form::SegmentPair cp = closed_form::closest_points(ha, t, d, hb);
     const Vec3 gap = cp.q - cp.p;  // from A's core toward B's
     LocalDistance l{};
     l.core = closed_form::safe_length(gap);
@@ -347,7 +348,7 @@ LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, cons
     l.point_b = cp.q;
     const double margin = ca.radius + cb.radius;
     if (l.core > 0) {
-        const closed_form::Axis axis = closed_form::separating_axis(ha, f.t, d, hb, gap, l.core);
+        const closed_form::Axis axis = closed_form::separating_axis(ha, t, d, hb, gap, l.core);
         l.unit = axis.n;
         // Apart only when the axis proves it: the cores' shadows on it, grown by the radii, do not
         // meet. Closer than that is touching within rounding, as GJK's own rule reads it.
