@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Closed forms for the pairs whose cores are points or segments (spheres, capsules, points and
-// segments among themselves): the distance between two segments, with no GJK iteration. Internal.
+// segments among themselves), and for a point core against a box (a sphere and a box): the
+// closest points with no GJK iteration. Internal.
 #pragma once
 
 #include "math/math.hpp"
@@ -78,6 +79,11 @@ inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 gap, doub
     }
     return best;
 }
+
+// Nearest point of the box |x_i| <= h_i to t (its own frame): t clamped. Exact: a coordinate
+// within its slab is copied, so a face's gap vector has exact zeros across the face, and every
+// non-zero component of t - p has the sign of its side: t - p separates whatever its rounding.
+inline Vec3 box_nearest(Vec3 h, Vec3 t) { return {clamp_to(t.x, h.x), clamp_to(t.y, h.y), clamp_to(t.z, h.z)}; }
 
 // |a| without overflow or underflow of its square (the cores may lie 1e100 apart, or 1e-200).
 inline double safe_length(Vec3 a) {

@@ -325,12 +325,59 @@ inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
     return normalized_or(a, normalized_or(fallback, {1, 0, 0}));
 }
 
-// Pairs whose cores are points or segments (spheres, capsules, points, segments) have a closed
-// form: no GJK loop, one "iteration", exact to rounding.
+// Pairs with a closed form: cores that are points or segments (spheres, capsules, points,
+// segments), or a point core and a box (a sphere or a point and a box). No GJK loop, one
+// "iteration", exact to rounding.
 inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core == Core::Segment; }
+inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
+    return (line_core(ca) && line_core(cb)) || (ca.core == Core::Point && cb.core == Core::Box) ||
+           (ca.core == Core::Box && cb.core == Core::Point);
+}
 
 // The cores' closest points in A's frame (the loop's LocalDistance, at the caller's scale);
 // center_offset receives B's origin in A's frame.
+LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
+                                 const Transform& pose_b, Vec3& center_offset);
+
+// A point core and a box, in the box's frame: the box's nearest point to the point (exact); the
+// axis t - p separates whenever it is not zero (closed_form::box_nearest). When B is the box the
+// answer is brought back to A's frame, where A's core is the origin.
+LocalDistance point_box_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
+                                 const Transform& pose_b, Vec3& center_offset) {
+    const bool a_is_box = ca.core == Core::Box;
+    const Transform& box_pose = a_is_box ? pose_a : pose_b;
+    const Transform& point_pose = a_is_box ? pose_b : pose_a;
+    const Vec3 h = static_cast<const BoxShape&>(a_is_box ? *ca.shape : *cb.shape).half_extents;
+    const Vec3 t = box_pose.to_local_direction(point_pose.translation - box_pose.translation);
+    const Vec3 p = closed_form::box_nearest(h, t);
+    const Vec3 gap = t - p;  // box frame, from the box toward the point
+    LocalDistance l{};
+    l.core = closed_form::safe_length(gap);
+    const Vec3 unit = l.core > 0 ? gap / l.core : Vec3{};
+    l.intersecting = !(l.core > ca.radius + cb.radius);
+    l.iterations = 1;
+    l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
+    if (a_is_box) {
+        center_offset = t;
+        l.point_a = p;
+        l.point_b = t;
+        l.unit = unit;
+    } else {
+        center_offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+        l.point_a = {};
+        l.point_b = pose_a.to_local_direction(pose_b.apply(p) - pose_a.translation);
+        l.unit = -pose_a.to_local_direction(pose_b.rotation * unit);
+    }
+    l.v = -l.core * l.unit;
+    return l;
+}
+
+LocalDistance closed_form_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
+                                   const Transform& pose_b, Vec3& center_offset) {
+    return line_core(ca) && line_core(cb) ? line_core_distance(ca, pose_a, cb, pose_b, center_offset)
+                                          : point_box_distance(ca, pose_a, cb, pose_b, center_offset);
+}
+
 LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
                                  const Transform& pose_b, Vec3& center_offset) {
     // Only B's centre and axis in A's frame are needed, not the whole relative rotation.
@@ -370,8 +417,8 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     const double radius_a = ca.radius, radius_b = cb.radius;
     Vec3 center_offset;
     const LocalDistance l =
-        line_core(ca) && line_core(cb)
-            ? line_core_distance(ca, pose_a, cb, pose_b, center_offset)
+        closed_form_pair(ca, cb)
+            ? closed_form_distance(ca, pose_a, cb, pose_b, center_offset)
             : with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
                   center_offset = pair.t;
                   return distance_loop(pair, margin, tolerance, max_iterations);
@@ -409,9 +456,9 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
 bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Vec3& io_axis,
                    uint32_t* out_iterations) {
     const CoreOf ca = classify(a), cb = classify(b);
-    if (line_core(ca) && line_core(cb)) {
+    if (closed_form_pair(ca, cb)) {
         Vec3 center_offset;
-        const LocalDistance l = line_core_distance(ca, pose_a, cb, pose_b, center_offset);
+        const LocalDistance l = closed_form_distance(ca, pose_a, cb, pose_b, center_offset);
         if (!l.intersecting) io_axis = world_direction(pose_a, l.unit);
         if (out_iterations) *out_iterations = 1;
         return l.intersecting;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The closed forms of src/gjk/closed_forms.hpp (pairs of points, segments, spheres and capsules,
-// which gjk_distance and gjk_intersect answer without a GJK loop) against two independent truths:
+// and a sphere or point against a box, which gjk_distance and gjk_intersect answer without a GJK
+// loop) against two independent truths:
 // the segment-segment distance in long double from the very matrices the library uses, and the
 // GJK loop itself on the same cores given as two-vertex hulls (which the closed forms never see).
 // Hard inputs on purpose: nearly parallel segments (tilts 0 .. 1e-3 rad) at gaps from 1e-12 to
@@ -199,6 +200,112 @@ TEST(ClosedForms, EveryLineCorePairAgainstLongDoubleAndGjk) {
     // Both verdicts are exercised.
     EXPECT_GT(t.intersecting, t.cases / 10) << "seed " << seed;
     EXPECT_LT(t.intersecting, t.cases * 9 / 10) << "seed " << seed;
+}
+
+// A sphere (or a point, or a rounded box's corner) against a box, in both orders: the box placed at
+// random, the ball's centre put at a face, an edge or a corner region at gaps from 1e-12 to 1e-2
+// of the size on either side, or at random. Truth: the centre clamped to the box in long double
+// (from the very matrix the library uses); and GJK on the cores given as hulls.
+TEST(ClosedForms, BallAgainstBoxAgainstLongDoubleAndGjk) {
+    const uint64_t seed = 611;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double gaps[] = {0, 1e-12, 1e-9, 1e-6, 1e-2, -1e-12, -1e-9, -1e-2, 0.3};
+    int cases = 0, intersecting = 0, failures = 0;
+    double worst = 0, worst_gjk = 0;
+    for (double scale : {1.0, 1e-150, 1e-6, 1e4, 1e90}) {
+        for (int i = 0; i < 1500; ++i) {
+            const Vec3 h = scale * Vec3{0.1 + std::fabs(u(rng)), 0.1 + std::fabs(u(rng)), 0.1 + std::fabs(u(rng))};
+            const double radius = i % 4 == 0 ? 0.0 : scale * 0.5 * std::fabs(u(rng));
+            BoxShape box(h);
+            SphereShape ball(radius);
+            PointShape point;
+            const Shape& b = radius > 0 ? static_cast<const Shape&>(ball) : static_cast<const Shape&>(point);
+            ConvexHullShape box_hull, point_hull;
+            for (int k = 0; k < 8; ++k)
+                box_hull.vertices.push_back({k & 1 ? h.x : -h.x, k & 2 ? h.y : -h.y, k & 4 ? h.z : -h.z});
+            point_hull.vertices = {{0, 0, 0}};
+            point_hull.dimension = 0;
+            const Transform xbox = make_transform(scale * Vec3{u(rng), u(rng), u(rng)}, random_rotation(rng));
+            // The centre: in a face, edge or corner region (1, 2 or 3 coordinates beyond the box)
+            // at the chosen gap from the ball's surface, or anywhere near.
+            Vec3 local{u(rng) * h.x, u(rng) * h.y, u(rng) * h.z};
+            const double gap = gaps[i % 9] * scale;
+            const int beyond = 1 + i / 9 % 3;
+            Vec3 out_dir{};
+            for (int k = 0; k < beyond; ++k) {
+                const int axis = (i / 27 + k) % 3;
+                const double sgn = u(rng) < 0 ? -1 : 1;
+                (axis == 0 ? out_dir.x : axis == 1 ? out_dir.y : out_dir.z) = sgn;
+                (axis == 0 ? local.x : axis == 1 ? local.y : local.z) = sgn * (axis == 0 ? h.x : axis == 1 ? h.y : h.z);
+            }
+            out_dir = normalized_or(out_dir, Vec3{1, 0, 0});
+            local = local + (radius + gap) * out_dir;
+            const Transform xb = make_transform(xbox.apply(local), random_rotation(rng));
+            // Truth in long double: the centre in the box's frame, clamped.
+            const L3 rel = lift(xb.translation) - lift(xbox.translation);
+            Real sq = 0;
+            for (int k = 0; k < 3; ++k) {
+                const L3 col{xbox.rotation.r[0][k], xbox.rotation.r[1][k], xbox.rotation.r[2][k]};
+                const Real c = dot(col, rel), hk = k == 0 ? h.x : k == 1 ? h.y : h.z;
+                const Real o = std::fabs(c) - hk;
+                if (o > 0) sq += o * o;
+            }
+            const Real truth = std::max(Real(0), std::sqrt(sq) - Real(radius));
+            const double size = std::max({max_abs(h), max_abs(xbox.translation), max_abs(xb.translation), radius});
+            const double tol = 1e-12 * size;
+            for (int order = 0; order < 2; ++order) {
+                const DistanceResult r = order == 0 ? gjk_distance(box, xbox, b, xb, 1e-10, 256)
+                                                    : gjk_distance(b, xb, box, xbox, 1e-10, 256);
+                Vec3 axis{};
+                const bool hit = order == 0 ? gjk_intersect(box, xbox, b, xb, axis, nullptr)
+                                            : gjk_intersect(b, xb, box, xbox, axis, nullptr);
+                ++cases;
+                auto fail = [&](const char* rule, double x) {
+                    if (++failures <= 8)
+                        ADD_FAILURE() << rule << " (" << x << "); truth " << double(truth) << ", got " << r.distance
+                                      << "; scale " << scale << " case " << i << " order " << order << " seed " << seed;
+                };
+                const double err = std::fabs(double(Real(r.distance) - truth));
+                worst = std::max(worst, err / size);
+                if (!(err <= tol)) fail("distance off the long-double truth", err / size);
+                if (r.iterations != 1) fail("a closed-form pair ran the GJK loop", r.iterations);
+                if (truth > tol && (r.intersecting || hit)) fail("intersecting although apart", double(truth));
+                if (truth == 0 && std::sqrt(sq) < Real(radius) - Real(tol) && (!r.intersecting || !hit))
+                    fail("apart although overlapping", 0);
+                if (r.intersecting) ++intersecting;
+                if (!r.intersecting) {
+                    // In long double: the squares of 1e-162 underflow in double.
+                    if (!(std::fabs(double(dist(lift(r.point_b), lift(r.point_a)) - Real(r.distance))) <= tol))
+                        fail("witness points", 0);
+                    if (r.distance > tol && !(dot(r.axis, r.point_b - r.point_a) > 0)) fail("axis from B toward A", 0);
+                }
+                if (!hit) {
+                    // The axis (from A toward B) separates: the box's shadow from its own frame.
+                    const Vec3 n = order == 0 ? axis : -axis;  // from the box toward the ball
+                    const Vec3 nl = xbox.to_local_direction(n);
+                    const double box_top = dot(n, xbox.translation) + std::fabs(nl.x) * h.x + std::fabs(nl.y) * h.y +
+                                           std::fabs(nl.z) * h.z;
+                    const double ball_bottom = dot(n, xb.translation) - radius;
+                    if (!(ball_bottom - box_top >= -tol)) fail("intersect's axis does not separate", box_top - ball_bottom);
+                }
+                // GJK on the cores as hulls.
+                if (!r.intersecting) {
+                    const DistanceResult g = order == 0 ? gjk_distance(box_hull, xbox, point_hull, xb, 1e-12, 256)
+                                                        : gjk_distance(point_hull, xb, box_hull, xbox, 1e-12, 256);
+                    const double gerr = std::fabs(g.distance - (r.distance + radius));
+                    worst_gjk = std::max(worst_gjk, gerr / size);
+                    if (!(gerr <= 1e-9 * size)) fail("GJK on the cores disagrees", gerr / size);
+                }
+            }
+        }
+    }
+    std::printf("ball/box closed form: %d queries, %d intersecting; worst error %.3g of the size against long "
+                "double, %.3g against GJK on the cores\n",
+                cases, intersecting, worst, worst_gjk);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(intersecting, cases / 10) << "seed " << seed;
+    EXPECT_LT(intersecting, cases * 9 / 10) << "seed " << seed;
 }
 
 }  // namespace
