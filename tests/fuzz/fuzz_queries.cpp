@@ -106,15 +106,18 @@ real aspect_of(const Width& width) {
     }
     if (!(longest > 0)) return 1;  // a point: no direction is longer
     const Vr basis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    // A move must gain more than rounding (a round shape's width is flat, and its rounding noise
+    // would let the climb wander for ever: found by fuzzing), and each step size makes at most 16.
     for (real step = 0.25L; step > 1e-8L; step *= 0.5L) {
-        for (bool moved = true; moved;) {
+        bool moved = true;
+        for (int moves = 0; moved && moves < 16; ++moves) {
             moved = false;
             for (const Vr& e : basis)
                 for (real sign : {real(1), real(-1)}) {
                     Vr c = axis + (sign * step) * e;
                     c = (1 / norm(c)) * c;
                     const real w = width(c);
-                    if (w > longest) longest = w, axis = c, moved = true;
+                    if (w > longest * (1 + 1e-18L)) longest = w, axis = c, moved = true;
                 }
         }
     }
