@@ -236,7 +236,7 @@ typedef struct kairos_distance_result {
     kairos_vec3 point_a, point_b;  /* closest points on A and on B, world frame (equal when touching) */
     kairos_vec3 axis;              /* unit, from A toward B; a separating axis when apart */
     int32_t     intersecting;      /* 1 when the shapes overlap or touch, else 0 */
-    uint32_t    iterations;        /* GJK iterations used */
+    uint32_t    iterations;        /* GJK iterations used (1 for a pair with a closed form: docs/algorithms.md §2) */
     int32_t     termination;       /* KAIROS_TERMINATION_*: which rule ended the iteration */
 } kairos_distance_result;
 

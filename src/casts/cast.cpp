@@ -7,6 +7,7 @@
 // (the kairos_restart rows of bench/results/cast.csv) at 1.5-6x the iterations and up to 2.3x the
 // time, and it reached the iteration cap on curved shapes at tolerance 1e-10; it was removed.
 #include "casts/cast.hpp"
+#include "gjk/closed_forms.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
@@ -440,6 +441,37 @@ CastResult result_head(const LocalCast& l) {
     return out;
 }
 
+// A ray from s (relative to a ball's centre, any frame) along r against the ball of `radius` (a
+// point core: a sphere, a point, or a sphere around one; for a shape cast, the two balls' cores
+// with the radii summed): the closed form, one "iteration". On a hit, `normal` is from the centre
+// toward the ray point at toi (the fallback when that is the centre itself, as a start inside
+// with the GJK loop) and `dir` the direction of the contact from the centre.
+struct BallHit {
+    CastResult head;
+    Vec3 normal, dir;
+};
+BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
+    BallHit b;
+    b.head.iterations = 1;
+    const double lambda = closed_form::ball_entry(s, r, radius);
+    if (!(lambda >= 0)) {
+        b.head.termination = Termination::Separated;
+        return b;
+    }
+    b.head.hit = true;
+    b.head.termination = Termination::Hit;
+    b.head.toi = lambda;
+    const Vec3 x = s + lambda * r;
+    if (lambda > 0) {
+        b.normal = normalized_or(x, fallback);
+        b.dir = b.normal;
+    } else {  // overlapping at the start: the GJK loop's normal, the contact toward the start
+        b.normal = fallback;
+        b.dir = normalized_or(s, fallback);
+    }
+    return b;
+}
+
 }  // namespace
 
 CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
@@ -448,6 +480,15 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
     const Vec3 s = pose.apply_inverse(origin);
     const Vec3 r = pose.to_local_direction(translation);
     const CoreOf c = classify(shape);
+    if (c.core == Core::Point) {
+        const Vec3 fallback = normalized_or(-r, normalized_or(s, pose.to_local_direction({0, 0, 1})));
+        const BallHit b = ball_cast(s, r, c.radius, fallback);
+        CastResult out = b.head;
+        if (!out.hit) return out;
+        out.normal = pose.rotation * b.normal;
+        out.point = pose.apply(c.radius * b.dir);
+        return out;
+    }
     const LocalCast l = with_support(c, [&](auto core) {
         return CastLoop(SingleSupport<decltype(core)>{core}, c.radius, s, r, tolerance)
             .run(first_direction(r, s), max_iterations);
@@ -476,6 +517,20 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     const Vec3 tb = pose_a.to_local_direction(translation_b);
     const Vec3 r = pose_a.to_local_direction(translation_b - translation_a);
     const double margin = ca.radius + cb.radius;
+    if (ca.core == Core::Point && cb.core == Core::Point) {
+        // B's centre relative to A's moves from t along r: a ray against a ball of both radii.
+        const Vec3 fallback = normalized_or(-r, normalized_or(t, pose_a.to_local_direction({0, 0, 1})));
+        const BallHit h = ball_cast(t, r, margin, fallback);
+        CastResult out = h.head;
+        if (!out.hit) return out;
+        // The contact point: each centre at toi pushed out by its radius toward the other; the two
+        // agree to rounding, the midpoint is taken (as the GJK path does).
+        const Vec3 pa = ca.radius * h.dir + out.toi * ta;
+        const Vec3 pb = t + out.toi * tb - cb.radius * h.dir;
+        out.normal = pose_a.rotation * h.normal;
+        out.point = pose_a.apply(0.5 * (pa + pb));
+        return out;
+    }
     const LocalCast l = with_support(ca, [&](auto sa) {
         return with_support(cb, [&](auto sb) {
             return CastLoop(PairSupport<decltype(sa), decltype(sb)>{sa, sb, rot, t}, margin, Vec3{}, r, tolerance)

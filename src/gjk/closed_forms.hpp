@@ -93,4 +93,33 @@ inline double safe_length(Vec3 a) {
     return m > 0 ? m * length(a / m) : 0.0;
 }
 
+// First lambda in [0, 1] at which s + lambda r lies within `radius` of the origin (a ray against a
+// ball), 0 when s starts within, -1 when never. Works at the scale of max(|s|, radius) (a power of
+// two, exact) with r's direction and length apart, so no square over- or underflows. The entry is
+// the smaller root of lambda'^2 - 2 m lambda' + (|s|^2 - radius^2) = 0 in the distance lambda'
+// along the unit direction (m = -s.u, the closest approach), taken as the product of the roots
+// over the larger one: no cancellation, unlike m - sqrt(m^2 - ...).
+inline double ball_entry(Vec3 s, Vec3 r, double radius) {
+    double m0 = max_abs(s);
+    if (radius > m0) m0 = radius;
+    double sc = 1;
+    if (m0 > 0 && (m0 < 0x1p-100 || m0 > 0x1p100)) sc = std::ldexp(1.0, -std::ilogb(m0));
+    s = sc * s;
+    const double rad = sc * radius;
+    const double ss = dot(s, s), rr = rad * rad;
+    if (ss <= rr) return 0;
+    const double len = safe_length(r);  // at the caller's scale
+    if (!(len > 0)) return -1;
+    const Vec3 u = r / len;
+    const double m = -dot(s, u);       // distance along u to the closest approach
+    if (!(m > 0)) return -1;           // moving away (and not inside)
+    const Vec3 w = s + m * u;          // the closest approach's offset
+    const double ww = dot(w, w);
+    if (ww > rr) return -1;
+    const double h = std::sqrt((rad - std::sqrt(ww)) * (rad + std::sqrt(ww)));
+    const double along = (std::sqrt(ss) - rad) * (std::sqrt(ss) + rad) / (m + h);  // scaled distance
+    const double lambda = (along / sc) / len;
+    return lambda <= 1 ? lambda : -1;
+}
+
 }  // namespace kairos::closed_form

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "casts/cast.hpp"
 #include "gjk/gjk.hpp"
 #include "shapes/shape.hpp"
 
@@ -306,6 +307,118 @@ TEST(ClosedForms, BallAgainstBoxAgainstLongDoubleAndGjk) {
     EXPECT_EQ(failures, 0) << "seed " << seed;
     EXPECT_GT(intersecting, cases / 10) << "seed " << seed;
     EXPECT_LT(intersecting, cases * 9 / 10) << "seed " << seed;
+}
+
+// Rays and shape casts between balls (point cores: spheres and points), which ray_cast and
+// shape_cast answer by the closed form. Truth: the entry of the ray into the ball in long double
+// (the smaller root of the quadratic, from the closest approach). Rays aimed at the ball with
+// offsets from the centre line of 0 .. 1 - 1e-12 .. 1 + 1e-2 of the radius (grazing included),
+// starting inside, reaching it just before or just after the step's end; scales 1e-150 to 1e90;
+// both shapes of a shape cast moving. Each answer is also held against the GJK cast loop on the
+// same balls given as one-vertex hulls grown by a sphere (a Minkowski sum), which it never sees.
+TEST(ClosedForms, BallCastsAgainstLongDoubleAndGjk) {
+    const uint64_t seed = 97;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double offsets[] = {0, 0.5, 0.9, 1 - 1e-6, 1 - 1e-12, 1 + 1e-12, 1 + 1e-6, 1.01};
+    const double reaches[] = {2, 1.0000001, 0.9999999, 0.5};  // the step's length over the entry distance
+    int cases = 0, hits = 0, failures = 0;
+    double worst = 0, worst_gjk = 0;
+    for (double scale : {1.0, 1e-150, 1e-6, 1e4, 1e90}) {
+        for (int i = 0; i < 640; ++i) {
+            const double ra = scale * (0.1 + std::fabs(u(rng))), rb = i % 5 == 0 ? 0.0 : scale * std::fabs(u(rng));
+            const double radius = ra + rb;
+            // B's centre relative to A's at the start: `back` before the ball along -dir, offset
+            // across by offsets[] of the radius; the relative motion along dir covers reaches[].
+            const Vec3 dir = normalized_or(Vec3{u(rng), u(rng), u(rng)}, Vec3{1, 0, 0});
+            const Vec3 side = normalized_or(cross(dir, Vec3{u(rng), u(rng), u(rng)}), Vec3{0, 1, 0});
+            const double off = offsets[i % 8] * radius;
+            const bool inside = i % 16 == 15;
+            const double back = inside ? 0.5 * radius : radius * (1 + 3 * std::fabs(u(rng)));
+            const Vec3 rel0 = (inside ? 0.0 : off) * side - back * dir;
+            const double entry = back - std::sqrt(std::max(0.0, radius * radius - off * off));
+            const Vec3 rel_motion = (entry > 0 ? entry * reaches[i / 8 % 4] : radius) * dir;
+            const Transform xa = make_transform(scale * Vec3{u(rng), u(rng), u(rng)}, random_rotation(rng));
+            const Transform xb = make_transform(xa.translation + rel0, random_rotation(rng));
+            const Vec3 ta = scale * Vec3{u(rng), u(rng), u(rng)};
+            const Vec3 tb = ta + rel_motion;
+            // Truth in long double from the doubles the casts see.
+            const L3 p0 = lift(xb.translation) - lift(xa.translation), v = lift(tb) - lift(ta);
+            const Real vv = dot(v, v), m = -dot(p0, v) / vv;
+            const L3 w = p0 + m * v;
+            const Real R = Real(ra) + Real(rb), ww = dot(w, w), pp = dot(p0, p0);
+            Real truth = -1;
+            if (pp <= R * R) truth = 0;
+            else if (m > 0 && ww <= R * R) {
+                const Real h = std::sqrt(R * R - ww) / std::sqrt(vv);
+                truth = (pp - R * R) / vv / (m + h);
+                if (truth > 1) truth = -1;
+            }
+            SphereShape a(ra), b(rb);
+            PointShape pt;
+            const Shape& bs = rb > 0 ? static_cast<const Shape&>(b) : static_cast<const Shape&>(pt);
+            ConvexHullShape ha, hb;
+            ha.vertices = {{0, 0, 0}}, ha.dimension = 0;
+            hb.vertices = {{0, 0, 0}}, hb.dimension = 0;
+            MinkowskiSumShape ga(ha, a);
+            MinkowskiSumShape gb(hb, b);
+            const CastResult c = shape_cast(a, xa, ta, bs, xb, tb, 1e-12, 256);
+            const CastResult g = shape_cast(ga, xa, ta, rb > 0 ? static_cast<const Shape&>(gb) : hb, xb, tb, 1e-12, 256);
+            // The ray cast: the ray of B's centre against A grown by B's radius is the same
+            // question when B is a point.
+            ++cases;
+            auto fail = [&](const char* rule, double x) {
+                if (++failures <= 8)
+                    ADD_FAILURE() << rule << " (" << x << "); truth " << double(truth) << ", got hit " << c.hit
+                                  << " toi " << c.toi << "; scale " << scale << " case " << i << " seed " << seed;
+            };
+            // Verdicts beyond grazing: a miss by more than 1e-9 of the radius, a hit inside by more.
+            const Real closest = std::sqrt(m > 1 ? dot(p0 + v, p0 + v) : (m < 0 ? pp : ww));
+            const bool clear_miss = closest > R * (1 + 1e-9L), clear_hit = closest < R * (1 - 1e-9L);
+            if (clear_miss && c.hit) fail("a hit where the balls stay apart", double(closest / R - 1));
+            if (clear_hit && truth >= 0 && !c.hit) fail("a miss where the balls meet", double(truth));
+            if (c.iterations != 1) fail("a closed-form pair ran the cast loop", c.iterations);
+            if (c.hit) {
+                ++hits;
+                if (truth >= 0) {
+                    const double err = std::fabs(double(Real(c.toi) - truth));
+                    // Grazing entries are ill-conditioned in toi (not in distance): judged on clear hits.
+                    if (clear_hit) {
+                        worst = std::max(worst, err);
+                        if (!(err <= 1e-12)) fail("toi off the long-double truth", err);
+                    }
+                }
+                if (!(std::fabs(length(c.normal) - 1) <= 1e-12)) fail("normal not unit", length(c.normal));
+                // The normal is from A toward B: the line between the centres at toi.
+                if (c.toi > 0) {
+                    const L3 between = p0 + Real(c.toi) * v;
+                    const Real along = dot(lift(c.normal), between) / std::sqrt(dot(between, between));
+                    if (!(along > 1 - 1e-9L)) fail("normal not along the centres", double(along));
+                }
+            }
+            if (g.hit == c.hit && c.hit && clear_hit) worst_gjk = std::max(worst_gjk, std::fabs(g.toi - c.toi));
+            if (clear_hit != clear_miss && g.hit != c.hit) fail("the GJK cast loop disagrees", g.toi - c.toi);
+            if (clear_hit && c.hit && g.hit && !(std::fabs(g.toi - c.toi) <= 1e-9)) fail("GJK's toi differs", g.toi - c.toi);
+            // Ray casts: B's centre as a ray against A grown by rb.
+            if (rb == 0) {
+                const CastResult rc = ray_cast(a, xa, xb.translation, tb - ta, 1e-12, 256);
+                if (rc.hit != c.hit || std::fabs(rc.toi - c.toi) > 1e-12) fail("ray and shape cast differ", rc.toi - c.toi);
+                if (rc.hit && rc.toi > 0) {
+                    // The ray's hit point on the sphere's surface, at the ray point.
+                    const Vec3 at = xb.translation + rc.toi * (tb - ta);
+                    const double off_surface = std::fabs(length(rc.point - xa.translation) - ra);
+                    if (!(off_surface <= 1e-12 * scale * 4)) fail("ray hit point off the surface", off_surface / scale);
+                    if (!(length(at - rc.point) <= 1e-9 * scale * 4 + 1e-6 * ra * double(!clear_hit)))
+                        fail("ray hit point away from the ray point", length(at - rc.point) / scale);
+                }
+            }
+        }
+    }
+    std::printf("ball casts: %d casts, %d hits; worst toi error %.3g against long double, %.3g against the GJK loop\n",
+                cases, hits, worst, worst_gjk);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(hits, cases / 5) << "seed " << seed;
+    EXPECT_LT(hits, cases * 4 / 5) << "seed " << seed;
 }
 
 }  // namespace
