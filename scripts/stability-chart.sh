@@ -3,8 +3,9 @@
 # Regenerates the stability catalogue: builds bench_stability (the shipped RelWithDebInfo flags,
 # one build job), runs every family of hard cases through Kairos and its peers, and draws the
 # failure-rate heatmap (method x family).
-#   scripts/stability-chart.sh   -> bench/results/stability.csv, bench/results/stability.png
-#                                   (the table and one reproducer line per failing method and family on stdout)
+#   scripts/stability-chart.sh   -> bench/results/stability.csv, bench/results/stability.png,
+#                                   bench/results/stability-reproducers.txt (one reproducer line per
+#                                   failing method and family; the table on stdout as well)
 # Needs: FCL, libccd, Bullet's double build, gnuplot (Debian: libfcl-dev libccd-dev libbullet-dev gnuplot-nox).
 # Exits non-zero when a family is one-sided (no judged case of one outcome): the table would be meaningless.
 set -eu
@@ -15,7 +16,10 @@ mkdir -p "$results"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKAIROS_BUILD_BENCH=ON -DKAIROS_ABI_CHECK=OFF >/dev/null
 nice -n 10 cmake --build "$build" --target bench_stability -j1 >/dev/null
 status=0
-"$build/bench/bench_stability" "$results/stability.csv" || status=$?
+"$build/bench/bench_stability" "$results/stability.csv" > "$build/stability.txt" || status=$?
+cat "$build/stability.txt"
+# One reproducer per failing method and family, kept beside the CSV (peers' failures to report).
+grep '^REPRO ' "$build/stability.txt" > "$results/stability-reproducers.txt" || true
 
 gnuplot <<GP
 set terminal pngcairo size 1700,900 font "DejaVu Sans,11" noenhanced
@@ -35,5 +39,5 @@ f="$results/stability.csv"
 plot f skip 1 using 11:10:(0.5):(0.5):(column(5)*100):xtic(2):ytic(1) with boxxyerror fs solid 1.0 noborder fc palette, \
      f skip 1 using 11:10:(sprintf("%.1f", column(5)*100)) with labels font ",9"
 GP
-echo "wrote $results/stability.csv and $results/stability.png"
+echo "wrote $results/stability.csv, $results/stability.png and $results/stability-reproducers.txt"
 exit $status
