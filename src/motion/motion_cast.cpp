@@ -53,7 +53,11 @@ double bounding_radius(const Shape& s) {
     bounds(s, Transform{}, lo, hi);
     const Vec3 m{std::fmax(std::fabs(lo.x), std::fabs(hi.x)), std::fmax(std::fabs(lo.y), std::fabs(hi.y)),
                  std::fmax(std::fabs(lo.z), std::fabs(hi.z))};
-    const double r = length(m);
+    // Scaled before squaring: a shape 1e-220 across must not read as a point (its squares
+    // underflow to 0, and a point's rule takes the other shape's radius: found by fuzzing).
+    const double big = std::fmax(m.x, std::fmax(m.y, m.z));
+    if (!(big > 0) || !std::isfinite(big)) return 0;
+    const double r = big * length(m / big);
     return std::isfinite(r) ? r : 0;
 }
 

@@ -996,4 +996,50 @@ TEST(GjkEdges, CastIntoAHugeSlabNeverMissesAnEntryAtTheStepsEnd) {
     kairos_shape_release(slab);
 }
 
+
+// A fuzz finding: a segment 1.25e-219 long turning and moving into a ball. Its bounding radius
+// squared underflowed to 0, so the motion cast took it for a point and measured "within tolerance
+// of contact" by the ball's radius: a hit 0.0011 short of the ball at tolerance 1e-3. The radius
+// is the segment's own now (kairos.h: tolerance * min(rA, rB)), so the hit is at contact. Truth:
+// the distance at the reported toi, from kairos_distance at the linearly moved positions (the
+// segment's and the ball's turns do not move their points).
+TEST(GjkEdges, MotionCastOfAShapeWhoseRadiusSquaredUnderflows) {
+    kairos_shape *a = nullptr, *b = nullptr;
+    ASSERT_EQ(kairos_shape_segment(6.2551155870908672e-220, &a), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_sphere(0.6775051499198903, &b), KAIROS_OK);
+    const kairos_motion ma{{{-2.996078431372549, -2.996078431372549, -2.996078431372549}, {1, 0, 0, 0}},
+                           {{-1.2078431372549021, -1.2078431372549021, -1.2078431372549021},
+                            {-3.0196078431372555e-05, 0, 0, 1}}};
+    const kairos_motion mb{{{-0.0074901960784313727, 0.0036037232013427945, -0.00088426031891355788},
+                            {0.53989437693969433, 0.53989437693969433, -0.35431932948499745, -0.53989437693969433}},
+                           {{-3.0959136339360649, -2.996078431372549, -2.996078431372549}, {-5.2370489051651797e-05, 0, 0, 1}}};
+    for (int order = 0; order < 2; ++order) {
+        SCOPED_TRACE(order == 0 ? "segment first" : "ball first");
+        kairos_query_settings s;
+        kairos_query_settings_init(&s);
+        s.tolerance = 1e-3;
+        kairos_cast_result r{};
+        ASSERT_EQ(order == 0 ? kairos_motion_cast(a, &ma, b, &mb, &s, &r) : kairos_motion_cast(b, &mb, a, &ma, &s, &r),
+                  KAIROS_OK)
+            << kairos_last_error();
+        ASSERT_EQ(r.hit, 1);
+        // HIT, or the step guard NO_PROGRESS at rounding-level distances (a lower bound of the time).
+        ASSERT_TRUE(r.termination == KAIROS_TERMINATION_HIT || r.termination == KAIROS_TERMINATION_NO_PROGRESS)
+            << r.termination;
+        auto at = [&](const kairos_motion& m) {
+            kairos_pose p = m.start;
+            p.position = kv(fromk(m.start.position) + r.toi * (fromk(m.end.position) - fromk(m.start.position)));
+            return p;
+        };
+        const kairos_pose pa = at(ma), pb = at(mb);
+        kairos_distance_result d{};
+        ASSERT_EQ(kairos_distance(a, &pa, b, &pb, nullptr, &d), KAIROS_OK);
+        // Within 1e-3 of the segment's radius (6.3e-220) of contact, up to the rounding of the
+        // positions at toi (about 1e-15 here).
+        EXPECT_LE(d.distance, 1e-14) << "toi " << r.toi;
+    }
+    kairos_shape_release(a);
+    kairos_shape_release(b);
+}
+
 }  // namespace

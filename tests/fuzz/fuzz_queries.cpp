@@ -184,6 +184,18 @@ bool conditioned(const Posed& a, const Posed& b) {
 constexpr real kPointsAspect = 1e5L;
 bool points_conditioned(const Posed& a, const Posed& b) { return conditioned(a, b) && pair_aspect(a, b) <= kPointsAspect; }
 
+// Distance from the local origin to the farthest corner of the shape's local bounding box (the
+// motion cast's rA, rB: kairos.h).
+real corner_radius(const Model& m) {
+    real sq = 0;
+    const Vr axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (const Vr& e : axes) {
+        const real h = std::fmax(std::fabs(support_value(m, e)), std::fabs(support_value(m, -1 * e)));
+        sq += h * h;
+    }
+    return std::sqrt(sq);
+}
+
 // Non-finite numbers in a successful result are a violation, unless the build tolerates them
 // on inputs beyond the moderate range.
 bool finite_or_report(bool ok, bool moderate_inputs, const char* what) {
@@ -658,8 +670,11 @@ void query_motion_cast(Input& in, const Posed& a, const Posed& b) {
                      (to_real(mb.end.position) - to_real(mb.start.position));
     const real size = pair_size(a, b, moves) + norm(to_real(ma.end.position) - to_real(ma.start.position));
     const real t = settings.tolerance;
-    // A hit is a time at which the shapes are within tolerance * min(rA, rB) of each other.
-    const real near = t * (a.model().magnitude + b.model().magnitude) + 1e-6L * size + pair_slack(a, b, size);
+    // A hit is a time at which the shapes are within tolerance * min(rA, rB) of each other, rA and
+    // rB the corners of the local bounding boxes (the larger when one is 0), as the header says.
+    const real ca = corner_radius(a.model()), cb = corner_radius(b.model());
+    const real radius = ca > 0 && cb > 0 ? std::fmin(ca, cb) : std::fmax(ca, cb);
+    const real near = t * radius + 1e-6L * size + pair_slack(a, b, size);
     // A guard stopped the search (MAX_ITERATIONS, NO_PROGRESS): a hit before which there is no
     // contact, but the shapes may be apart there (the header), at toi 0 too (max_iterations 1
     // ends before the first advance; found by fuzzing).
