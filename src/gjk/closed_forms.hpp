@@ -51,15 +51,15 @@ struct Axis {
     double sep;  // separation(n): a lower bound of the distance, to rounding
 };
 
-// The unit axis from P toward Q given gap = q - p (non-zero, |gap| = len), chosen to prove the
-// separation. gap / len alone is tilted by the rounding of the subtraction (eps |c| absolute, far
+// The unit axis from P toward Q given n0 = unit_of(q - p), chosen to prove the separation. n0
+// alone is tilted by the rounding of the subtraction (eps |c| absolute, far
 // above the gap when the segments nearly touch), and a tilt t toward a segment's direction widens
 // its shadow by h t, so it would not separate them. The exact axis is perpendicular to each
 // segment whose closest point is interior (and to both when they are parallel, where any point of
-// the overlap is closest): the candidates are gap / len with its component along e_z, along d, or
-// both taken out, and the one that separates best is kept.
-inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 gap, double len) {
-    Axis best{gap / len, separation(gap / len, ha, c, d, hb)};
+// the overlap is closest): the candidates are n0 with its component along e_z, along d, or both
+// taken out, and the one that separates best is kept.
+inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 n0) {
+    Axis best{n0, separation(n0, ha, c, d, hb)};
     auto consider = [&](Vec3 n) {
         const double m = dot(n, n);
         if (!(m > 0.25)) return;  // (nearly) nothing left of the gap's direction
@@ -67,7 +67,6 @@ inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 gap, doub
         const double sep = separation(n, ha, c, d, hb);
         if (sep > best.sep) best = {n, sep};
     };
-    const Vec3 n0 = best.n;
     if (hb > 0) consider(n0 - dot(n0, d) * d);
     if (ha > 0) {
         const Vec3 na{n0.x, n0.y, 0};
@@ -93,6 +92,14 @@ inline double safe_length(Vec3 a) {
     return m > 0 ? m * length(a / m) : 0.0;
 }
 
+// a / |a| for a non-zero a, formed from a / max|a_i| (exact to rounding, about 1): a / |a| with
+// |a| itself subnormal (cores 1e-321 apart) rounds |a| to a few bits and is not unit (found by
+// fuzzing the world).
+inline Vec3 unit_of(Vec3 a) {
+    const Vec3 b = a / max_abs(a);
+    return (1 / std::sqrt(dot(b, b))) * b;
+}
+
 // First lambda in [0, 1] at which s + lambda r lies within `radius` of the origin (a ray against a
 // ball), 0 when s starts within, -1 when never. Works at the scale of max(|s|, radius) (a power of
 // two, exact) with r's direction and length apart, so no square over- or underflows. The entry is
@@ -108,9 +115,12 @@ inline double ball_entry(Vec3 s, Vec3 r, double radius) {
     const double rad = sc * radius;
     const double ss = dot(s, s), rr = rad * rad;
     if (ss <= rr) return 0;
-    const double len = safe_length(r);  // at the caller's scale
-    if (!(len > 0)) return -1;
-    const Vec3 u = r / len;
+    // r's direction and length apart, each from r / max|r_i| (a subnormal |r| carries few bits).
+    const double rm = max_abs(r);
+    if (!(rm > 0)) return -1;
+    const Vec3 rn = r / rm;
+    const double rn_len = std::sqrt(dot(rn, rn));
+    const Vec3 u = (1 / rn_len) * rn;
     const double m = -dot(s, u);       // distance along u to the closest approach
     if (!(m > 0)) return -1;           // moving away (and not inside)
     const Vec3 w = s + m * u;          // the closest approach's offset
@@ -118,7 +128,7 @@ inline double ball_entry(Vec3 s, Vec3 r, double radius) {
     if (ww > rr) return -1;
     const double h = std::sqrt((rad - std::sqrt(ww)) * (rad + std::sqrt(ww)));
     const double along = (std::sqrt(ss) - rad) * (std::sqrt(ss) + rad) / (m + h);  // scaled distance
-    const double lambda = (along / sc) / len;
+    const double lambda = ((along / sc) / rm) / rn_len;  // |r| = rm * rn_len
     return lambda <= 1 ? lambda : -1;
 }
 

@@ -353,7 +353,7 @@ LocalDistance point_box_distance(const CoreOf& ca, const Transform& pose_a, cons
     const Vec3 gap = t - p;  // box frame, from the box toward the point
     LocalDistance l{};
     l.core = closed_form::safe_length(gap);
-    const Vec3 unit = l.core > 0 ? gap / l.core : Vec3{};
+    const Vec3 unit = l.core > 0 ? closed_form::unit_of(gap) : Vec3{};
     l.intersecting = !(l.core > ca.radius + cb.radius);
     l.iterations = 1;
     l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
@@ -395,7 +395,7 @@ LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, cons
     l.point_b = cp.q;
     const double margin = ca.radius + cb.radius;
     if (l.core > 0) {
-        const closed_form::Axis axis = closed_form::separating_axis(ha, t, d, hb, gap, l.core);
+        const closed_form::Axis axis = closed_form::separating_axis(ha, t, d, hb, closed_form::unit_of(gap));
         l.unit = axis.n;
         // Apart only when the axis proves it: the cores' shadows on it, grown by the radii, do not
         // meet. Closer than that is touching within rounding, as GJK's own rule reads it.

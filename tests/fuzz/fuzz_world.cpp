@@ -328,7 +328,9 @@ void WorldFuzz::read_results(bool after_step) {
         if (!(c.toi >= 0 && c.toi <= 1))
             violation("kairos_world_contacts: contact %zu toi %.17g outside [0, 1]", i, c.toi);
         if (!(std::fabs(norm(to_real(c.normal)) - 1) < 1e-6L))
-            violation("kairos_world_contacts: contact %zu normal %s is not unit", i, show(c.normal));
+            violation("kairos_world_contacts: contact %zu normal %s is not unit (toi %.17g); A %s %s -> %s, B %s %s -> %s",
+                      i, show(c.normal), c.toi, describe(*oa->model).c_str(), show(oa->pose.pose), show(oa->end.pose),
+                      describe(*ob->model).c_str(), show(ob->pose.pose), show(ob->end.pose));
         if (i > 0) {
             const kairos_contact& p = contacts[i - 1];
             const bool ordered = p.toi < c.toi || (p.toi == c.toi && (p.a < c.a || (p.a == c.a && p.b < c.b)));

@@ -421,4 +421,42 @@ TEST(ClosedForms, BallCastsAgainstLongDoubleAndGjk) {
     EXPECT_LT(hits, cases * 4 / 5) << "seed " << seed;
 }
 
+// A fuzz_world finding: a tiny ball ended 8e-321 from another (subnormal coordinates), and the
+// contact's normal was gap / |gap| with |gap| itself subnormal, rounded to a few bits: 1.8e-4 off
+// unit. Distances, intersect axes and casts between cores that far apart or closer, both orders.
+TEST(ClosedForms, SubnormalGapsGiveUnitAxes) {
+    const Vec3 offsets[] = {{2.4209216646221081e-321, -7.4900351909532976e-321, 3.0582663477573161e-321},
+                            {5e-324, 0, 0}, {1e-320, 3e-322, -7e-323}, {1e-310, -1e-311, 4e-312}};
+    SphereShape tiny(4.41007095445182e-260 * 1e-70);  // a radius far below the gap: 0 after rounding
+    PointShape point;
+    SegmentShape seg(1e-322);
+    BoxShape box({1e-322, 2e-322, 1e-322});
+    const Shape* shapes[] = {&tiny, &point, &seg};
+    for (const Vec3& o : offsets)
+        for (const Shape* a : shapes)
+            for (const Shape* b : {static_cast<const Shape*>(&point), static_cast<const Shape*>(&box)}) {
+                const Transform xa = make_transform(o, Quat{}), xb = make_transform({0, 0, 0}, Quat{});
+                for (int order = 0; order < 2; ++order) {
+                    const DistanceResult r = order == 0 ? gjk_distance(*a, xa, *b, xb, 1e-10, 256)
+                                                        : gjk_distance(*b, xb, *a, xa, 1e-10, 256);
+                    EXPECT_NEAR(length(r.axis), 1.0, 1e-12) << "offset " << o.x << " order " << order;
+                    Vec3 axis{};
+                    const bool hit = order == 0 ? gjk_intersect(*a, xa, *b, xb, axis, nullptr)
+                                                : gjk_intersect(*b, xb, *a, xa, axis, nullptr);
+                    if (!hit) {
+                        EXPECT_NEAR(length(axis), 1.0, 1e-12) << "offset " << o.x << " order " << order;
+                    }
+                }
+            }
+    // Casts: a point moving onto a ball across a subnormal gap, and a subnormal motion.
+    for (const Vec3& o : offsets) {
+        SphereShape ball(1e-321);
+        const CastResult c = shape_cast(point, make_transform(4 * o, Quat{}), -8 * o, ball,
+                                        make_transform({0, 0, 0}, Quat{}), {0, 0, 0}, 1e-10, 256);
+        if (c.hit) {
+            EXPECT_NEAR(length(c.normal), 1.0, 1e-12) << "offset " << o.x;
+        }
+    }
+}
+
 }  // namespace
