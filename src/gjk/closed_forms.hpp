@@ -110,7 +110,12 @@ inline double ball_entry(Vec3 s, Vec3 r, double radius) {
     double m0 = max_abs(s);
     if (radius > m0) m0 = radius;
     double sc = 1;
-    if (m0 > 0 && (m0 < 0x1p-100 || m0 > 0x1p100)) sc = std::ldexp(1.0, -std::ilogb(m0));
+    // Clamped as pair_scale does: 2^-ilogb of a subnormal radius (1e-315) would overflow to inf
+    // and make a start inside a miss (found by fuzzing).
+    if (m0 > 0 && (m0 < 0x1p-100 || m0 > 0x1p100)) {
+        const int e = -std::ilogb(m0);
+        sc = std::ldexp(1.0, e > 1000 ? 1000 : (e < -1000 ? -1000 : e));
+    }
     s = sc * s;
     const double rad = sc * radius;
     const double ss = dot(s, s), rr = rad * rad;

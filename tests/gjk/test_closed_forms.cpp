@@ -448,6 +448,17 @@ TEST(ClosedForms, SubnormalGapsGiveUnitAxes) {
                     }
                 }
             }
+    // A fuzz finding: a ball of subnormal radius with a point at its centre, neither moving, was a
+    // miss (its scale factor overflowed to inf). Both casts, both orders of the shape cast.
+    {
+        SphereShape sub(1.067154952430554e-315);
+        const Transform at0 = make_transform({0, 0, 0}, Quat{});
+        EXPECT_TRUE(shape_cast(sub, at0, {0, 0, 0}, point, at0, {0, 0, 0}, 1e-10, 256).hit);
+        EXPECT_TRUE(shape_cast(point, at0, {0, 0, 0}, sub, at0, {0, 0, 0}, 1e-10, 256).hit);
+        EXPECT_TRUE(ray_cast(sub, at0, {0, 0, 0}, {0, 0, 0}, 1e-10, 256).hit);
+        EXPECT_TRUE(ray_cast(sub, at0, {1e-316, 0, 0}, {0, 0, 0}, 1e-10, 256).hit);
+        EXPECT_FALSE(ray_cast(sub, at0, {3e-315, 0, 0}, {0, 0, 0}, 1e-10, 256).hit);
+    }
     // Casts: a point moving onto a ball across a subnormal gap, and a subnormal motion.
     for (const Vec3& o : offsets) {
         SphereShape ball(1e-321);
