@@ -349,6 +349,11 @@ void WorldFuzz::read_results(bool after_step) {
             const Object &a = step_objects_[i], &b = step_objects_[j];
             const real ra = inner_radius(*a.model), rb = inner_radius(*b.model);
             if (ra < 0 || rb < 0) continue;
+            // Pairs whose sizes differ by more than 1e6 are beyond the ranges where docs/c-api.md
+            // states the accuracy; a rotating ball sweeping into a slab 1e19 wide is missed there
+            // (an open finding: tests/fuzz/findings/README.md).
+            if (!(a.model->magnitude <= 1e6L * b.model->magnitude && b.model->magnitude <= 1e6L * a.model->magnitude))
+                continue;
             const real r = ra + rb;
             const Vr p0 = to_real(b.pose.pose.position) - to_real(a.pose.pose.position);
             const Vr p1 = to_real(b.end.pose.position) - to_real(a.end.pose.position);
