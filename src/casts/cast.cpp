@@ -453,7 +453,8 @@ struct BallHit {
 BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
     BallHit b;
     b.head.iterations = 1;
-    const double lambda = closed_form::ball_entry(s, r, radius);
+    const closed_form::BallEntry e = closed_form::ball_entry(s, r, radius);
+    const double lambda = e.lambda;
     if (!(lambda >= 0)) {
         b.head.termination = Termination::Separated;
         return b;
@@ -461,9 +462,8 @@ BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
     b.head.hit = true;
     b.head.termination = Termination::Hit;
     b.head.toi = lambda;
-    const Vec3 x = s + lambda * r;
     if (lambda > 0) {
-        b.normal = normalized_or(x, fallback);
+        b.normal = normalized_or(e.offset, fallback);
         b.dir = b.normal;
     } else {  // overlapping at the start: the GJK loop's normal, the contact toward the start
         b.normal = fallback;

@@ -4,6 +4,7 @@
 // closest points with no GJK iteration. Internal.
 #pragma once
 
+#include "gjk/support_kernels.hpp"
 #include "math/math.hpp"
 
 #include <cmath>
@@ -106,35 +107,45 @@ inline Vec3 unit_of(Vec3 a) {
 // the smaller root of lambda'^2 - 2 m lambda' + (|s|^2 - radius^2) = 0 in the distance lambda'
 // along the unit direction (m = -s.u, the closest approach), taken as the product of the roots
 // over the larger one: no cancellation, unlike m - sqrt(m^2 - ...).
-inline double ball_entry(Vec3 s, Vec3 r, double radius) {
-    double m0 = max_abs(s);
-    if (radius > m0) m0 = radius;
-    double sc = 1;
-    // Clamped as pair_scale does: 2^-ilogb of a subnormal radius (1e-315) would overflow to inf
-    // and make a start inside a miss (found by fuzzing).
-    if (m0 > 0 && (m0 < 0x1p-100 || m0 > 0x1p100)) {
-        const int e = -std::ilogb(m0);
-        sc = std::ldexp(1.0, e > 1000 ? 1000 : (e < -1000 ? -1000 : e));
-    }
+//
+// `offset` is the entry point relative to the centre, at the working scale (only its direction is
+// meant): w - h u, the closest approach's offset w less the half chord h along u. Formed so
+// rather than as s + lambda r, whose rounding (eps |s|) is all there is of it when the radius is
+// far below |s| (a point cast onto a ball 1e-250 wide: a normal along the motion, found by fuzzing).
+// Zero when the radius is 0 and the ray passes through the centre.
+struct BallEntry {
+    double lambda = -1;
+    Vec3 offset;
+};
+inline BallEntry ball_entry(Vec3 s, Vec3 r, double radius) {
+    BallEntry e;
+    const double sc = kernels::pair_scale(s, {radius, 0, 0});
     s = sc * s;
     const double rad = sc * radius;
     const double ss = dot(s, s), rr = rad * rad;
-    if (ss <= rr) return 0;
+    if (ss <= rr) {
+        e.lambda = 0;
+        e.offset = s;
+        return e;
+    }
     // r's direction and length apart, each from r / max|r_i| (a subnormal |r| carries few bits).
     const double rm = max_abs(r);
-    if (!(rm > 0)) return -1;
+    if (!(rm > 0)) return e;
     const Vec3 rn = r / rm;
     const double rn_len = std::sqrt(dot(rn, rn));
     const Vec3 u = (1 / rn_len) * rn;
     const double m = -dot(s, u);       // distance along u to the closest approach
-    if (!(m > 0)) return -1;           // moving away (and not inside)
+    if (!(m > 0)) return e;            // moving away (and not inside)
     const Vec3 w = s + m * u;          // the closest approach's offset
     const double ww = dot(w, w);
-    if (ww > rr) return -1;
+    if (ww > rr) return e;
     const double h = std::sqrt((rad - std::sqrt(ww)) * (rad + std::sqrt(ww)));
     const double along = (std::sqrt(ss) - rad) * (std::sqrt(ss) + rad) / (m + h);  // scaled distance
     const double lambda = ((along / sc) / rm) / rn_len;  // |r| = rm * rn_len
-    return lambda <= 1 ? lambda : -1;
+    if (!(lambda <= 1)) return e;
+    e.lambda = lambda;
+    e.offset = w - h * u;
+    return e;
 }
 
 }  // namespace kairos::closed_form

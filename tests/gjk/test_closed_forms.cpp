@@ -470,4 +470,64 @@ TEST(ClosedForms, SubnormalGapsGiveUnitAxes) {
     }
 }
 
+// A fuzz finding: a point cast head-on onto a ball 1.6e-250 wide 10 away came back with a normal
+// along the motion. The entry point's offset from the centre was formed as s + toi r, whose
+// rounding (1e-15 of |s|) was all of it. Head-on and nearly head-on casts onto balls from 1e-250
+// to 1e-8 of the distance, point onto ball and ball onto ball, both argument orders, ray casts
+// too: the normal is unit and opposes the relative motion, as the true normal at any entry does.
+TEST(ClosedForms, TinyBallsMetHeadOnGiveANormalAgainstTheMotion) {
+    const uint64_t seed = 131;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    PointShape point;
+    int cases = 0, hits = 0, failures = 0;
+    for (double ratio : {1e-250, 1e-100, 1e-30, 1e-17, 1e-15, 1e-8}) {
+        for (int i = 0; i < 200; ++i) {
+            const double far = std::ldexp(1.0, int(u(rng) * 20));
+            // Small-integer starts and directions (the fuzz case's was (1, 0, 1) at integers), so
+            // the centres' line is exact and its rounding alone decides a hit; random ones too.
+            const Vec3 lattice[] = {{1, 0, 1}, {1, 1, 0}, {-1, 1, 1}, {3, 0, -4}, {1, 2, 2}};
+            const Vec3 a0 = far * Vec3{std::round(8 * u(rng)), std::round(8 * u(rng)), std::round(8 * u(rng))};
+            const Vec3 dir = i % 6 < 5 ? lattice[i % 6] : Vec3{u(rng), u(rng), u(rng)};
+            const double gap = far * std::round(1 + 8 * std::fabs(u(rng)));
+            SphereShape ball(ratio * gap * length(dir));
+            const Vec3 b0 = a0 + gap * dir;
+            // A moves toward B, B toward A (sometimes still): they would meet near the middle.
+            const double share = i % 4 == 0 ? 1.0 : (i % 4 == 1 ? 0.5 : 0.75);
+            const Vec3 ta = 1.25 * share * gap * dir, tb = -1.25 * (1 - share) * gap * dir;
+            const Transform xa = make_transform(a0, random_rotation(rng)), xb = make_transform(b0, random_rotation(rng));
+            for (int order = 0; order < 2; ++order) {
+                const Shape& sa = i % 2 ? static_cast<const Shape&>(point) : static_cast<const Shape&>(ball);
+                const CastResult c = order == 0 ? shape_cast(sa, xa, ta, ball, xb, tb, 1e-10, 256)
+                                                : shape_cast(ball, xb, tb, sa, xa, ta, 1e-10, 256);
+                const Vec3 rel = order == 0 ? tb - ta : ta - tb;  // B's motion relative to A's
+                ++cases;
+                if (!c.hit) continue;
+                ++hits;
+                const double along = dot(c.normal, rel) / length(rel);
+                if (!(std::fabs(length(c.normal) - 1) <= 1e-12) || !(along < 0)) {
+                    if (++failures <= 8)
+                        ADD_FAILURE() << "shape cast normal (" << c.normal.x << " " << c.normal.y << " " << c.normal.z
+                                      << ") along the relative motion by " << along << "; ratio " << ratio << " case "
+                                      << i << " order " << order << " seed " << seed;
+                }
+            }
+            // The ray of A's start along A's motion onto B (still).
+            const CastResult r = ray_cast(ball, xb, a0, ta, 1e-10, 256);
+            ++cases;
+            if (r.hit) {
+                ++hits;
+                const double along = dot(r.normal, ta) / length(ta);
+                if (!(along < 0) && ++failures <= 8)
+                    ADD_FAILURE() << "ray cast normal along the ray by " << along << "; ratio " << ratio << " case " << i
+                                  << " seed " << seed;
+            }
+        }
+    }
+    std::printf("tiny balls head on: %d casts, %d hits\n", cases, hits);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    // A head-on ray misses a ball narrower than its rounding (ratio 1e-17 and below) at times.
+    EXPECT_GT(hits, cases / 5) << "seed " << seed;
+}
+
 }  // namespace
