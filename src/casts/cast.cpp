@@ -244,9 +244,11 @@ private:
             // The plane's offset v.w carries rounding of a few eps |v| (|x| + |p|), which can be far
             // above the overlap when C is huge beside the other shape (a slab 1e19 wide and a unit
             // sphere ending 4 inside it): a crossing past 1 by less than that rounding is read as
-            // reaching the step's end, so an entry there is never missed.
+            // reaching the step's end, so an entry there is never missed. Compared as the plane's
+            // separation of the ray's end, not as lambdas: over a motion of subnormal length both
+            // quotients overflow to inf, and inf <= inf let a ray stopped 1e10 away hit (fuzzing).
             const double rounding = 4 * std::numeric_limits<double>::epsilon() * std::sqrt(dot(v_, v_)) * (max_abs(x_) + max_abs(p) + margin_);
-            if (!(next <= 1 + rounding / -vr)) return false;
+            if (!((vw - offset) + (1 - lambda_) * vr <= rounding)) return false;
             next = 1;
         }
         lambda_ = next;

@@ -492,3 +492,34 @@ TEST(CastCurved, RaysOntoACylinderAgainstClosedForm) {
         rays, hits, gaps[gaps.size() / 2], gaps[gaps.size() * 99 / 100], gaps.back());
     EXPECT_GT(rays, 10000);  // most random rays reach the solid: the set exercises the hit path
 }
+
+// A fuzz finding: a ray of subnormal length (1e-320) starting 1e10 from a capsule 5e9 wide hit it
+// at toi 1. The end-of-step allowance compared the plane's crossing as lambdas, and over such a
+// motion both quotients overflowed to inf (inf <= inf). Rays and shape casts of subnormal and
+// tiny motions from starts 1.5 .. 4 radii away, capsules and hulls, scales 1 .. 1e10: no hit.
+TEST(ShapeCast, ATinyMotionFarFromAShapeNeverHits) {
+    const uint64_t seed = 331;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int cases = 0, hits = 0;
+    for (double scale : {1.0, 1e5, 1e10})
+        for (double len : {1e-320, 1e-310, 1e-200, 1e-30})
+            for (int i = 0; i < 40; ++i) {
+                CapsuleShape cap(scale, 0.005 * scale);
+                BoxShape box({scale, 0.5 * scale, 0.7 * scale});
+                const Shape& s = i % 2 ? static_cast<const Shape&>(cap) : static_cast<const Shape&>(box);
+                Vec3 dir{u(rng), u(rng), u(rng)};
+                dir = dir / length(dir);
+                const Vec3 origin = (1.5 + 2.5 * std::fabs(u(rng))) * 1.3 * scale * dir;
+                const Vec3 motion = len * Vec3{u(rng), u(rng), u(rng)};
+                const Transform at = make_transform({0, 0, 0}, Quat{});
+                const CastResult r = ray_cast(s, at, origin, motion, 1e-10, 256);
+                SphereShape tiny(1e-3 * scale);
+                const CastResult c = shape_cast(tiny, make_transform(origin, Quat{}), motion, s, at, {0, 0, 0}, 1e-10, 256);
+                cases += 2;
+                hits += r.hit + c.hit;
+                EXPECT_FALSE(r.hit) << "ray: scale " << scale << " length " << len << " case " << i << " seed " << seed;
+                EXPECT_FALSE(c.hit) << "shape cast: scale " << scale << " length " << len << " case " << i << " seed " << seed;
+            }
+    std::printf("tiny motions far away: %d casts, %d hits\n", cases, hits);
+}
