@@ -8,6 +8,7 @@
 // time, and it reached the iteration cap on curved shapes at tolerance 1e-10; it was removed.
 #include "casts/cast.hpp"
 #include "gjk/closed_forms.hpp"
+#include "gjk/gjk.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
@@ -551,6 +552,28 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     const Vec3 pb = l.point_b - cb.radius * dir + l.lambda * tb;
     out.normal = pose_a.rotation * n;
     out.point = pose_a.apply(0.5 * (pa + pb));
+    // A stop on a rounding rule can leave a simplex whose v, and the last clipping plane, are far
+    // from the contact normal on a long shape (15 degrees on a capsule stretched to 1e5 by a
+    // transform, 1e-4 short of contact; found by fuzzing): the normal and point then come from
+    // the distance at toi, when it opposes the motion as a contact normal does.
+    const Termination stop = l.termination;
+    if (out.toi > 0 && (stop == Termination::NoProgress || stop == Termination::RepeatedSupport ||
+                        stop == Termination::JohnsonFailed)) {
+        Transform at_a = pose_a, at_b = pose_b;
+        at_a.translation = pose_a.translation + out.toi * translation_a;
+        at_b.translation = pose_b.translation + out.toi * translation_b;
+        const DistanceResult d = gjk_distance(a, at_a, b, at_b, tolerance, max_iterations);
+        // The better of the two separates the shapes at toi by more (near a curved rim, where the
+        // gap is at rounding level, the cast's own normal is).
+        auto separation = [&](Vec3 n) {
+            return dot(n, support(b, at_b, -n)) - dot(n, support(a, at_a, n));
+        };
+        if (!d.intersecting && dot(d.axis, translation_b - translation_a) < 0 &&
+            separation(d.axis) > separation(out.normal)) {
+            out.normal = d.axis;
+            out.point = 0.5 * (d.point_a + d.point_b);
+        }
+    }
     return out;
 }
 

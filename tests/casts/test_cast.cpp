@@ -523,3 +523,34 @@ TEST(ShapeCast, ATinyMotionFarFromAShapeNeverHits) {
             }
     std::printf("tiny motions far away: %d casts, %d hits\n", cases, hits);
 }
+
+// A fuzz finding: a unit sphere cast onto a capsule stretched by a transform to 1.4e5 long and
+// 0.12 thin stopped on "no progress" 1e-4 short of contact with a normal 15 degrees off, so the
+// normal's plane cut 3.5 deep into the capsule at toi. The normal must still separate the shapes
+// at toi (to the tolerance times the size); the distance there gives the true one.
+TEST(ShapeCast, ARoundingStopOnALongShapeKeepsASeparatingNormal) {
+    CapsuleShape cap(1.0002746623941405, 100);
+    Mat3 m;
+    m.r[0] = {0.11595635919737544, 0, 0};
+    m.r[1] = {0, 13.925841128186804, 0.081388187946859439};
+    m.r[2] = {0, -0.00084101158262596181, 1347.6615524367273};
+    TransformedShape stretched(cap, m, {-3.9372549019607845, -0.85932707713435574, 3.9374990463111317});
+    SphereShape ball(1);
+    const Transform at = make_transform({-1.7098039215686276, -1.7098039215686276, -1.7098039215686276}, Quat{0, 1, 0, 0});
+    const Vec3 ta{-42.745098039215691, -42.745098039215691, -42.745098039215691};
+    const Vec3 tb{-99.777218280308233, -30.467689021133747, -30.196078431372552};
+    for (int order = 0; order < 2; ++order) {
+        const CastResult c = order ? shape_cast(stretched, at, tb, ball, at, ta, 1e-10, 256)
+                                   : shape_cast(ball, at, ta, stretched, at, tb, 1e-10, 256);
+        ASSERT_TRUE(c.hit);
+        const Shape& a = order ? static_cast<const Shape&>(stretched) : static_cast<const Shape&>(ball);
+        const Shape& b = order ? static_cast<const Shape&>(ball) : static_cast<const Shape&>(stretched);
+        Transform xa = at, xb = at;
+        xa.translation = at.translation + c.toi * (order ? tb : ta);
+        xb.translation = at.translation + c.toi * (order ? ta : tb);
+        const double sep = dot(c.normal, support(b, xb, -c.normal)) - dot(c.normal, support(a, xa, c.normal));
+        EXPECT_GT(sep, -1e-6) << "order " << order << " normal " << c.normal.x << " " << c.normal.y << " " << c.normal.z;
+        const DistanceResult d = gjk_distance(a, xa, b, xb, 1e-12, 256);
+        EXPECT_GT(dot(d.axis, c.normal), 1 - 1e-6) << "order " << order;
+    }
+}
