@@ -397,8 +397,10 @@ CastResult motion_cast(const Shape& a, const Motion& ma, const Shape& b, const M
         if (out_stats) *out_stats = stats;
         const double delta = tolerance * size;
         const double reach = 2 * (radius_a + radius_b);
-        const double cast_tolerance =
-            reach > 0 && delta > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
+        // delta may underflow to 0 (a segment 5e-324 long against a ball: tolerance * 5e-324): the
+        // finest cast then, not the caller's tolerance, which is relative to the reach (a hit 1e-3
+        // short of contact at tolerance 0.5; found by fuzzing).
+        const double cast_tolerance = reach > 0 ? std::fmax(delta / (reach + delta), kMinTolerance) : tolerance;
         return shape_cast(a, make_transform(ma.start().position, ma.start().orientation), ma.linear(), b,
                           make_transform(mb.start().position, mb.start().orientation), mb.linear(), cast_tolerance,
                           max_iterations);

@@ -489,3 +489,27 @@ TEST(MotionCastLong, DISABLED_HundredThousandRotatingCasts) {
         EXPECT_EQ(all.far, 0);
     }
 }
+
+// A fuzz finding: tolerance * min(rA, rB) underflowed to 0 for a segment 5e-324 long against a
+// ball, and the translation-only path then cast at the caller's tolerance 0.5, relative to the
+// reach: a hit 1e-3 short of contact. Tiny and subnormal shapes against a unit ball at coarse
+// tolerances, orientations equal at both ends (q to -q included): the distance at toi is within
+// tolerance * min(rA, rB) plus rounding.
+TEST(MotionCast, AContactDistanceThatUnderflowsIsExact) {
+    SphereShape ball(1);
+    const Quat q = normalized(Quat{-0.45685833960288719, -0.036867058988877571, 0.72938138426138655, 0.50786403080997722});
+    const Quat minus_q{-q.x, -q.y, -q.z, -q.w};
+    for (double h : {4.9406564584124654e-324, 1e-310, 1e-300})
+        for (double tolerance : {0.5, 0.1, 1e-3}) {
+            SegmentShape seg(h);
+            const Vec3 a0{-1.2187075608453499, -1.2078431372549021, -1.2078431372549021};
+            const Motion ma(state(a0, q), state(a0, minus_q));
+            const Motion mb(state({0, 0, 0}), state({-1.2757656214236668, -1.2078431372549021, -1.2078431372549021}));
+            const CastResult c = motion_cast(seg, ma, ball, mb, tolerance, 256);
+            ASSERT_TRUE(c.hit) << "h " << h << " tolerance " << tolerance;
+            const Pose pb = mb.at(c.toi);
+            const double gap = length(pb.position - a0) - 1;
+            EXPECT_LE(gap, 1e-9) << "h " << h << " tolerance " << tolerance << " toi " << c.toi;
+            EXPECT_GE(gap, -1e-9) << "h " << h << " tolerance " << tolerance << " toi " << c.toi;
+        }
+}
