@@ -83,6 +83,7 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         kairos_step_stats_init,
         kairos_world_step_stats,
         kairos_shape_triangle,
+        kairos_signed_distance,
     };
     const char* const fn = __func__;
     return kairos::capi::guarded(fn, [&] {

@@ -3,6 +3,7 @@
 #include "boundary.hpp"
 #include "casts/cast.hpp"
 #include "gjk/gjk.hpp"
+#include "gjk/penetration.hpp"
 #include "motion/motion_cast.hpp"
 
 using namespace kairos;
@@ -40,6 +41,37 @@ kairos_cast_result checked(const CastResult& r, const char* fn) {
     return to_c(r);
 }
 
+// kairos_distance and kairos_signed_distance: the same checks and the same result struct.
+template <class Query>
+[[gnu::always_inline]] inline int32_t distance_query(const char* fn, const kairos_shape* a, const kairos_pose* pose_a, const kairos_shape* b,
+                       const kairos_pose* pose_b, const kairos_query_settings* settings, kairos_distance_result* out,
+                       Query query) {
+    return guarded(fn, [&] {
+        require_pointer(a, fn, "a");
+        const Transform pa = read_transform(pose_a, fn, "pose_a");
+        require_pointer(b, fn, "b");
+        const Transform pb = read_transform(pose_b, fn, "pose_b");
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
+        require_pointer(out, fn, "out");
+        const DistanceResult r = query(shape_of(a), pa, shape_of(b), pb, qs.tolerance, qs.max_iterations);
+        // One sum decides the common case: finite parts below 1e101 cannot add up to an overflow,
+        // so a non-finite sum means a non-finite part, or (never in range) an overflow that the
+        // full test then clears.
+        const double sum = r.distance + r.point_a.x + r.point_a.y + r.point_a.z + r.point_b.x + r.point_b.y +
+                           r.point_b.z + r.axis.x + r.axis.y + r.axis.z;
+        if (!std::isfinite(sum))
+            require_finite_result(
+                std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
+        // Every check has passed: nothing below can fail, so *out is written in place.
+        out->distance = r.distance;
+        out->point_a = kairos::capi::to_c(r.point_a);
+        out->point_b = kairos::capi::to_c(r.point_b);
+        out->axis = kairos::capi::to_c(r.axis);
+        out->intersecting = r.intersecting ? 1 : 0;
+        out->iterations = r.iterations;
+        out->termination = static_cast<int32_t>(r.termination);
+    });
+}
 }  // namespace
 
 extern "C" {
@@ -51,36 +83,19 @@ KAIROS_API void kairos_query_settings_init(kairos_query_settings* s) {
     s->max_iterations = capi::kDefaultQuerySettings.max_iterations;
 }
 
+
 KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pose_a, const kairos_shape* b,
                                    const kairos_pose* pose_b, const kairos_query_settings* settings,
                                    kairos_distance_result* out) {
-    const char* const fn = __func__;
-    return guarded(fn, [&] {
-        require_pointer(a, fn, "a");
-        const Transform pa = read_transform(pose_a, fn, "pose_a");
-        require_pointer(b, fn, "b");
-        const Transform pb = read_transform(pose_b, fn, "pose_b");
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        require_pointer(out, fn, "out");
-        const DistanceResult r =
-            gjk_distance(shape_of(a), pa, shape_of(b), pb, qs.tolerance, qs.max_iterations);
-        // One sum decides the common case: finite parts below 1e101 cannot add up to an overflow,
-        // so a non-finite sum means a non-finite part, or (never in range) an overflow that the
-        // full test then clears.
-        const double sum = r.distance + r.point_a.x + r.point_a.y + r.point_a.z + r.point_b.x + r.point_b.y +
-                           r.point_b.z + r.axis.x + r.axis.y + r.axis.z;
-        if (!std::isfinite(sum))
-            require_finite_result(
-                std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
-        // Every check has passed: nothing below can fail, so *out is written in place.
-        out->distance = r.distance;
-        out->point_a = to_c(r.point_a);
-        out->point_b = to_c(r.point_b);
-        out->axis = to_c(r.axis);
-        out->intersecting = r.intersecting ? 1 : 0;
-        out->iterations = r.iterations;
-        out->termination = static_cast<int32_t>(r.termination);
-    });
+    return distance_query(__func__, a, pose_a, b, pose_b, settings, out,
+                          [](const auto&... x) { return gjk_distance(x...); });
+}
+
+KAIROS_API int32_t kairos_signed_distance(const kairos_shape* a, const kairos_pose* pose_a, const kairos_shape* b,
+                                          const kairos_pose* pose_b, const kairos_query_settings* settings,
+                                          kairos_distance_result* out) {
+    return distance_query(__func__, a, pose_a, b, pose_b, settings, out,
+                          [](const auto&... x) { return signed_distance(x...); });
 }
 
 KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* pose_a, const kairos_shape* b,

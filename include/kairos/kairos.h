@@ -257,6 +257,19 @@ typedef struct kairos_cast_result {
 KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pose_a,
                                    const kairos_shape* b, const kairos_pose* pose_b,
                                    const kairos_query_settings* settings, kairos_distance_result* out);
+/* Signed distance (version 0.2): apart, the same result as kairos_distance. Overlapping:
+ * distance = -depth (< 0), axis the unit direction (world frame) from A toward B along which
+ * translating B by depth leaves the shapes touching (the minimum translation), point_a and
+ * point_b the deepest points on A's and B's surfaces with point_b - point_a = distance * axis
+ * (to rounding), intersecting 1. Touching within rounding gives 0. Spheres, capsules and shapes
+ * grown by a sphere are their cores plus the radii. The depth is found by the expanding polytope
+ * algorithm (docs/algorithms.md); termination: RELATIVE_ERROR (depth within the tolerance),
+ * REPEATED_SUPPORT (polytopes: exact to rounding), NEAR_CONTACT (the cores' difference is flat: a
+ * segment crossing a segment, coplanar triangles), NO_PROGRESS or MAX_ITERATIONS (rounding or the
+ * guard, at most min(max_iterations, 128) support calls: the depth is then a lower bound). */
+KAIROS_API int32_t kairos_signed_distance(const kairos_shape* a, const kairos_pose* pose_a,
+                                          const kairos_shape* b, const kairos_pose* pose_b,
+                                          const kairos_query_settings* settings, kairos_distance_result* out);
 /* *out = 1 when the shapes overlap or touch, else 0. axis_cache (world frame, any length, may be
  * NULL) seeds the search and receives a separating axis when one is found: keep one per pair
  * and pass it again next frame, and a smoothly moving pair needs about one iteration. A zero or
@@ -426,6 +439,8 @@ typedef struct kairos_api {
     int32_t (*world_step_stats)(const kairos_world*, kairos_step_stats*);
     /* ABI version 2 (Kairos 0.2) */
     int32_t (*shape_triangle)(kairos_vec3, kairos_vec3, kairos_vec3, kairos_shape**);
+    int32_t (*signed_distance)(const kairos_shape*, const kairos_pose*, const kairos_shape*, const kairos_pose*,
+                               const kairos_query_settings*, kairos_distance_result*);
 } kairos_api;
 
 /* The function table for abi_version (1 <= abi_version <= KAIROS_ABI_VERSION of the library).

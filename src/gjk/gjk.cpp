@@ -2,6 +2,7 @@
 // GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"
+#include "gjk/core_distance.hpp"
 #include "gjk/closed_forms.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
@@ -302,20 +303,6 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
     return result;
 }
 
-// Calls fn(pair_support, margin) with the pair's support of A - B in A's frame.
-template <class Fn>
-auto with_pair(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b, Fn&& fn) {
-    const RelativeFrame frame = relative_frame(pose_a, pose_b);
-    const Mat3& r = frame.r;
-    const Vec3 t = frame.t;
-    const double margin = ca.radius + cb.radius;
-    return with_support(ca, [&](auto sa) {
-        return with_support(cb, [&](auto sb) {
-            return fn(PairSupport<decltype(sa), decltype(sb)>{sa, sb, r, t}, margin);
-        });
-    });
-}
-
 Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
 
 // a / |a| given |a|^2 (one square root, one division); when a is zero or its square under- or
@@ -409,6 +396,30 @@ LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, cons
 }
 
 }  // namespace
+
+CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                           double tolerance, uint32_t max_iterations) {
+    if (max_iterations == 0) max_iterations = 1;
+    CoreDistance c;
+    LocalDistance l;
+    if (closed_form_pair(ca, cb)) {
+        l = closed_form_distance(ca, pose_a, cb, pose_b, c.center_offset);
+        l.intersecting = !(l.core > 0);
+    } else {
+        l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+            c.center_offset = pair.t;
+            return distance_loop(pair, 0.0, tolerance, max_iterations);
+        });
+    }
+    c.distance = l.intersecting ? 0 : l.core;
+    c.overlap = l.intersecting;
+    c.point_a = l.point_a;
+    c.point_b = l.point_b;
+    c.unit = l.unit;
+    c.iterations = l.iterations;
+    c.termination = l.termination;
+    return c;
+}
 
 DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                             double tolerance, uint32_t max_iterations) {

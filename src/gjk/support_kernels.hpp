@@ -198,4 +198,18 @@ auto with_support(const CoreOf& c, Fn&& fn) {
     return fn(GenericSupport{&s});
 }
 
+// Calls fn(pair_support, margin) with the pair's support of A - B in A's frame.
+template <class Fn>
+auto with_pair(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b, Fn&& fn) {
+    const RelativeFrame frame = relative_frame(pose_a, pose_b);
+    const Mat3& r = frame.r;
+    const Vec3 t = frame.t;
+    const double margin = ca.radius + cb.radius;
+    return with_support(ca, [&](auto sa) {
+        return with_support(cb, [&](auto sb) {
+            return fn(PairSupport<decltype(sa), decltype(sb)>{sa, sb, r, t}, margin);
+        });
+    });
+}
+
 }  // namespace kairos::kernels

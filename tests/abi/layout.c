@@ -145,8 +145,9 @@ PIN_API(step_stats_init, 34);
 PIN_API(world_step_stats, 35);
 /* ABI version 2 appends: */
 PIN_API(shape_triangle, 36);
-/* The size of ABI version 2's table: 37 entries. A new ABI version appends and grows this. */
-PIN_SIZE(kairos_api, 8 + 8 * 37);
+PIN_API(signed_distance, 37);
+/* The size of ABI version 2's table: 38 entries. A new ABI version appends and grows this. */
+PIN_SIZE(kairos_api, 8 + 8 * 38);
 PIN(KAIROS_ABI_VERSION == 2u);
 
 /* ---- Constants are ABI too: never renumbered -------------------------------------------------- */
@@ -197,7 +198,7 @@ static const kairos_api kairos_layout_table_types = {
     kairos_world_settings_init, kairos_world_create, kairos_world_destroy, kairos_world_add,
     kairos_world_remove, kairos_world_set_pose, kairos_world_move, kairos_world_step,
     kairos_world_contacts, kairos_world_overlaps, kairos_step_stats_init, kairos_world_step_stats,
-    kairos_shape_triangle,
+    kairos_shape_triangle, kairos_signed_distance,
 };
 
 /* Referenced so that the table above is not an unused variable under -Wall. */

@@ -293,36 +293,43 @@ TEST_F(Shapes, QueriesCheckEveryArgument) {
     kairos_pose p = identity();
     kairos_pose bad = identity();
     bad.orientation = {1, 1, 0, 0};
-    kairos_distance_result dr;
-    std::memset(&dr, 0xab, sizeof dr);
-    const kairos_distance_result dr0 = dr;
-    EXPECT_TRUE(Rejected(kairos_distance(nullptr, &p, box, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT, "a"));
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, nullptr, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT, "b"));
-    EXPECT_TRUE(
-        Rejected(kairos_distance(box, &bad, box, &p, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_a.orientation"));
-    EXPECT_TRUE(
-        Rejected(kairos_distance(box, &p, box, &bad, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_b.orientation"));
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+    // kairos_distance and kairos_signed_distance check the same arguments alike; the message names
+    // the function too.
     kairos_query_settings bs = qs;
-    bs.struct_size = 0;
-    EXPECT_TRUE(
-        Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
-    bs = qs;
-    bs.struct_size = sizeof qs + 8;
-    EXPECT_TRUE(
-        Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
-    for (double tol : {0.0, -1e-3, 1.0, kNaN, kInf}) {
-        bs = qs;
-        bs.tolerance = tol;
+    for (const auto query : {kairos_distance, kairos_signed_distance}) {
+        kairos_distance_result dr;
+        std::memset(&dr, 0xab, sizeof dr);
+        const kairos_distance_result dr0 = dr;
+        EXPECT_TRUE(Rejected(query(nullptr, &p, box, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT, "a"));
+        EXPECT_TRUE(Rejected(query(box, &p, nullptr, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT, "b"));
         EXPECT_TRUE(
-            Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "settings->tolerance"))
-            << tol;
+            Rejected(query(box, &bad, box, &p, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_a.orientation"));
+        EXPECT_TRUE(
+            Rejected(query(box, &p, box, &bad, &qs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "pose_b.orientation"));
+        EXPECT_TRUE(Rejected(query(box, &p, box, &p, &qs, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+        bs = qs;
+        bs.struct_size = 0;
+        EXPECT_TRUE(
+            Rejected(query(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
+        bs = qs;
+        bs.struct_size = sizeof qs + 8;
+        EXPECT_TRUE(
+            Rejected(query(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_STRUCT_SIZE, "settings->struct_size"));
+        for (double tol : {0.0, -1e-3, 1.0, kNaN, kInf}) {
+            bs = qs;
+            bs.tolerance = tol;
+            EXPECT_TRUE(
+                Rejected(query(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT, "settings->tolerance"))
+                << tol;
+        }
+        bs = qs;
+        bs.max_iterations = 0;
+        EXPECT_TRUE(Rejected(query(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT,
+                             "settings->max_iterations"));
+        EXPECT_EQ(std::memcmp(&dr, &dr0, sizeof dr), 0);
+        EXPECT_TRUE(Rejected(query(nullptr, &p, box, &p, &qs, &dr), KAIROS_ERROR_NULL_ARGUMENT,
+                             query == kairos_distance ? "kairos_distance" : "kairos_signed_distance"));
     }
-    bs = qs;
-    bs.max_iterations = 0;
-    EXPECT_TRUE(Rejected(kairos_distance(box, &p, box, &p, &bs, &dr), KAIROS_ERROR_INVALID_ARGUMENT,
-                         "settings->max_iterations"));
-    EXPECT_EQ(std::memcmp(&dr, &dr0, sizeof dr), 0);
 
     int32_t hit = 42;
     kairos_vec3 axis{1, 0, 0};

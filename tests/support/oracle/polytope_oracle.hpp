@@ -63,7 +63,11 @@ inline Polytope make_polytope(std::vector<P3> pts) {
         hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
         p.scale = std::max({p.scale, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
     }
-    const P3 centre = Real(0.5) * (lo + hi);
+    // The vertices' mean (inside the hull; the bounding box's centre need not be: a sliver
+    // tetrahedron's face then came out facing inward and was dropped, leaving an open polytope).
+    P3 centre{0, 0, 0};
+    for (const P3& q : p.v) centre = centre + q;
+    centre = (Real(1) / Real(n)) * centre;
     const Real extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     const Real tol = extent * Real(1e-12);
     std::vector<std::array<int, 2>> edges;

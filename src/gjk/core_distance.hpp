@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// The distance between the cores of two shapes (each shape less the radius folded out of it:
+// a sphere's centre, a capsule's segment, a rounded box's box), for the signed distance. Internal.
+#pragma once
+
+#include <cstdint>
+
+#include "gjk/support_kernels.hpp"
+#include "gjk/termination.hpp"
+#include "math/math.hpp"
+
+namespace kairos {
+
+// In A's local frame, at the caller's scale.
+struct CoreDistance {
+    double distance = 0;     // >= 0; 0 when the cores overlap or touch within rounding
+    Vec3 point_a, point_b;   // the cores' closest points (apart)
+    Vec3 unit;               // from A's core toward B's (apart); zero when unknown
+    Vec3 center_offset;      // B's origin in A's frame
+    bool overlap = false;
+    uint32_t iterations = 0;
+    Termination termination = Termination::None;
+};
+
+// The closed forms for the pairs that have them, else GJK on the cores with no margin.
+CoreDistance core_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
+                           const Transform& pose_b, double tolerance, uint32_t max_iterations);
+
+}  // namespace kairos

@@ -1,0 +1,371 @@
+// SPDX-License-Identifier: MIT
+// The expanding polytope algorithm on the cores' configuration-space obstacle, in A's frame, with
+// fixed-size arrays (no allocation). See penetration.hpp for the contract and the source.
+#include "gjk/penetration.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+#include "gjk/core_distance.hpp"
+#include "gjk/support_kernels.hpp"
+
+namespace kairos {
+namespace {
+
+using namespace kernels;
+
+constexpr double kEps = 2.220446049250313e-16;
+constexpr int kMaxVertices = 4 + 128;
+constexpr int kMaxFaces = 2 * kMaxVertices;
+
+struct Vertex {
+    Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)
+};
+struct Face {
+    uint8_t v[3];  // counter-clockwise seen from outside
+    Vec3 n;        // outward unit normal
+    // The origin's distance to the triangle (not its plane: a sliver's plane, tilted by rounding,
+    // can pass nearer the origin than any of its points), or the plane's offset n . x when the
+    // origin lies beyond it (< 0).
+    double d;
+    double off;    // n . x for x on the face
+    double l[3];
+    bool edge;     // the nearest point is on an edge (the origin's projection falls outside)   // the triangle's nearest point to the origin as a combination of the corners
+};
+
+// The cores' depth in A's frame at the caller's scale: a - b = depth * n for the deepest points.
+struct CoreDepth {
+    double depth = 0;
+    Vec3 n, point_a, point_b;
+    uint32_t iterations = 0;
+    Termination termination = Termination::None;
+    bool flat = false;  // C has no interior (or a sliver's): point_a and point_b unset
+};
+
+template <class Pair>
+class Expander {
+public:
+    Expander(Pair pair, Vec3 hint, uint32_t budget) : pair_(pair), hint_(hint), budget_(budget) {}
+
+    CoreDepth run(double tolerance) {
+        CoreDepth out;
+        out.termination = build_tetrahedron(out);
+        if (out.termination != Termination::None) return finish(out);
+        double upper = INFINITY;  // smallest support value of C along a unit direction (upper_n_)
+        for (;;) {
+            int f = 0;
+            for (int i = 1; i < nf_; ++i)
+                if (faces_[i].d < faces_[f].d) f = i;
+            const Face face = faces_[f];
+            if (calls_ >= budget_ || nv_ == kMaxVertices) return finish(face, Termination::MaxIterations, out);
+            Vertex x;
+            x.w = support(face.n, x);
+            const double h = dot(face.n, x.w);
+            if (h < upper) upper = h, upper_n_ = face.n, upper_x_ = x;  // depth <= C's support along any unit n
+            const double gap = h - face.off;
+            // Support point on the face's plane within the rounding of points of C's size.
+            if (gap <= floor()) return finish(face, Termination::RepeatedSupport, out);
+            if (face.d >= 0 && upper - face.d <= tolerance * upper) return finish(face, Termination::RelativeError, out);
+            if (!expand(x)) return finish(face, Termination::NoProgress, out);
+        }
+    }
+
+private:
+    Vec3 support(Vec3 d, Vertex& x) {
+        ++calls_;
+        Vec3 w = pair_(d, x.a, x.b);
+        if (calls_ == 1) {
+            const double sc = pair_scale(x.a, x.b);
+            if (sc != 1) {
+                double unused = 0;
+                adopt_scale(pair_, sc, x.a, x.b, unused);
+                w = x.a - x.b;
+            }
+        }
+        x.w = w;
+        const double m = max_abs(w);
+        if (m > size_) size_ = m;
+        return w;
+    }
+    // Rounding of a support value or a face offset of points of C's size.
+    double floor() const { return 64 * kEps * size_; }
+
+    int add_vertex(const Vertex& x) {
+        verts_[nv_] = x;
+        return nv_++;
+    }
+
+    // The face through i, j, k (in that winding): false when its normal is not defined to
+    // rounding (a sliver).
+    bool make_face(int i, int j, int k, Face& f) const {
+        const Vec3 e1 = verts_[j].w - verts_[i].w, e2 = verts_[k].w - verts_[i].w;
+        const Vec3 n = cross(e1, e2);
+        const double len = length(n);
+        if (!(len > 64 * kEps * length(e1) * length(e2))) return false;
+        f.v[0] = uint8_t(i), f.v[1] = uint8_t(j), f.v[2] = uint8_t(k);
+        f.n = (1 / len) * n;
+        const Vec3 w[3] = {verts_[i].w, verts_[j].w, verts_[k].w};
+        f.off = (dot(f.n, w[0]) + dot(f.n, w[1]) + dot(f.n, w[2])) / 3;
+        f.d = f.off;
+        // Area coordinates of the origin's projection p = d n.
+        const Vec3 p = f.d * f.n;
+        double sum = 0, least = INFINITY;
+        for (int c = 0; c < 3; ++c) {
+            f.l[c] = dot(f.n, cross(w[(c + 1) % 3] - p, w[(c + 2) % 3] - p));
+            sum += f.l[c];
+            least = std::fmin(least, f.l[c]);
+        }
+        f.edge = !(least >= 0 || f.d < 0);
+        if (!f.edge) {
+            const double s = sum > 0 ? 1 / sum : 0;
+            for (double& c : f.l) c = sum > 0 ? (c > 0 ? c * s : 0) : 1.0 / 3;
+            return true;
+        }
+        // p outside the triangle: the nearest point of its edges.
+        double best = INFINITY;
+        for (int c = 0; c < 3; ++c) {
+            const Vec3 e = w[(c + 1) % 3] - w[c];
+            const double ee = dot(e, e);
+            double t = ee > 0 ? -dot(w[c], e) / ee : 0;
+            t = t < 0 ? 0 : (t > 1 ? 1 : t);
+            const double dist = length(w[c] + t * e);
+            if (dist < best) {
+                best = dist;
+                f.l[c] = 1 - t, f.l[(c + 1) % 3] = t, f.l[(c + 2) % 3] = 0;
+            }
+        }
+        if (best > f.d) f.d = best;
+        return true;
+    }
+
+    // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
+    // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
+    Termination build_tetrahedron(CoreDepth& out) {
+        Vec3 d0 = normalized_or(hint_, {1, 0, 0});
+        Vertex x0, x1;
+        support(d0, x0);
+        support(-d0, x1);
+        add_vertex(x0);
+        add_vertex(x1);
+        const Vec3 e = x1.w - x0.w;
+        out.n = d0;
+        if (!(length(e) > floor())) {  // C is a point: touching
+            flat_ = 0;
+            return Termination::NearContact;
+        }
+        // Two directions across the segment; C's points beyond the line along one of them.
+        const Vec3 eu = normalized_or(e, {1, 0, 0});
+        const Vec3 p = normalized_or(cross(eu, std::fabs(eu.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}), {0, 0, 1});
+        const Vec3 q = cross(eu, p);
+        const Vec3 tries[4] = {p, -p, q, -q};
+        Vertex far;
+        double far_off = -1;
+        for (const Vec3& d : tries) {
+            Vertex x;
+            support(d, x);
+            const Vec3 off = x.w - x0.w;
+            const double across = length(off - dot(off, eu) * eu);
+            if (across > far_off) far = x, far_off = across;
+        }
+        if (!(far_off > floor())) {  // C is a segment: the normal across it nearest the hint
+            const Vec3 across = hint_ - dot(hint_, eu) * eu;
+            out.n = normalized_or(across, p);
+            flat_ = 1;
+            return Termination::NearContact;
+        }
+        add_vertex(far);
+        const Vec3 m = normalized_or(cross(verts_[1].w - verts_[0].w, verts_[2].w - verts_[0].w), {0, 0, 1});
+        Vertex up, down;
+        support(m, up);
+        support(-m, down);
+        const double hu = dot(m, up.w - x0.w), hd = -dot(m, down.w - x0.w);
+        if (!(std::fmax(hu, hd) > floor())) {  // C is flat: its plane's normal, toward the hint
+            out.n = dot(m, hint_) < 0 ? -m : m;
+            flat_ = 2;
+            return Termination::NearContact;
+        }
+        add_vertex(hu >= hd ? up : down);
+        // The four faces, each wound so that the fourth point lies behind it.
+        const int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
+        for (const auto& t : tri) {
+            Face f;
+            bool ok = make_face(t[0], t[1], t[2], f);
+            if (ok && dot(f.n, verts_[t[3]].w) > f.d) ok = make_face(t[0], t[2], t[1], f);
+            if (!ok) {  // a sliver tetrahedron: taken as flat, along the hint
+                flat_ = 2;
+                return Termination::NoProgress;
+            }
+            faces_[nf_++] = f;
+        }
+        interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
+        return Termination::None;
+    }
+
+    // Adds x: removes the faces that see it and closes the hole with faces from the horizon to x.
+    // Nothing changes (false) when rounding makes the hole other than a single cycle of edges,
+    // or a new face a sliver or facing inward.
+    //
+    // Faces x lies on within rounding are where that happens (the hole pinched at a vertex whose
+    // faces are nearly coplanar): so the faces are taken as seeing x beyond a margin of a few
+    // roundings, and when that fails, with the faces x lies on included, then stricter.
+    bool expand(const Vertex& x) {
+        for (double margin : {1.0, -1.0, 16.0, -16.0})
+            if (expand(x, margin * floor())) return true;
+        return false;
+    }
+    bool expand(const Vertex& x, double margin) {
+        bool visible[kMaxFaces];
+        int n_visible = 0;
+        for (int i = 0; i < nf_; ++i) {
+            visible[i] = dot(faces_[i].n, x.w) - faces_[i].off > margin;
+            n_visible += visible[i];
+        }
+        if (n_visible == 0) return false;
+        // Horizon: the directed edges of visible faces whose reverse is not on a visible face
+        // (the visible set is small: a pairwise search over its edges).
+        int ea[3 * kMaxFaces], eb[3 * kMaxFaces];
+        int ne = 0;
+        for (int i = 0; i < nf_; ++i) {
+            if (!visible[i]) continue;
+            for (int k = 0; k < 3; ++k) ea[ne] = faces_[i].v[k], eb[ne] = faces_[i].v[(k + 1) % 3], ++ne;
+        }
+        int from[kMaxVertices], to[kMaxVertices];
+        int nh = 0;
+        for (int i = 0; i < ne; ++i) {
+            bool shared = false;
+            for (int j = 0; j < ne && !shared; ++j) shared = ea[j] == eb[i] && eb[j] == ea[i];
+            if (shared) continue;
+            if (nh == kMaxVertices) return false;
+            from[nh] = ea[i], to[nh] = eb[i], ++nh;
+        }
+        // One cycle: every vertex starts at most one edge, and following them visits them all.
+        if (nh < 3 || nf_ - n_visible + nh > kMaxFaces) return false;
+        int next[kMaxVertices];
+        for (int i = 0; i < nv_; ++i) next[i] = -1;
+        for (int i = 0; i < nh; ++i) {
+            if (next[from[i]] != -1) return false;
+            next[from[i]] = to[i];
+        }
+        int at = from[0], steps = 0;
+        do {
+            at = next[at];
+            ++steps;
+        } while (at != -1 && at != from[0] && steps <= nh);
+        if (at != from[0] || steps != nh) return false;
+        // The new faces, checked before anything changes.
+        const int xi = nv_;
+        verts_[xi] = x;
+        Face fresh[kMaxVertices];
+        for (int i = 0; i < nh; ++i) {
+            if (!make_face(from[i], to[i], xi, fresh[i])) return false;
+            if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
+        }
+        ++nv_;
+        int kept = 0;
+        for (int i = 0; i < nf_; ++i)
+            if (!visible[i]) faces_[kept++] = faces_[i];
+        for (int i = 0; i < nh; ++i) faces_[kept++] = fresh[i];
+        nf_ = kept;
+        return true;
+    }
+
+    // The nearest face's nearest point to the origin, as a combination of its corners.
+    CoreDepth finish(const Face& f, Termination t, CoreDepth& out) {
+        if (f.d < 0 && dot(upper_n_, upper_n_) > 0) {
+            // Stopped before the polytope held the origin (rounding, or the guard): the smallest
+            // support value seen, an upper bound (B moved by it along upper_n_ no longer overlaps).
+            const double u = dot(upper_n_, upper_x_.w);
+            out.depth = u > 0 ? u : 0;
+            out.n = upper_n_;
+            out.point_a = upper_x_.a;
+            out.point_b = upper_x_.a - out.depth * upper_n_;
+            out.termination = t;
+            return finish(out);
+        }
+        out.point_a = f.l[0] * verts_[f.v[0]].a + f.l[1] * verts_[f.v[1]].a + f.l[2] * verts_[f.v[2]].a;
+        out.point_b = f.l[0] * verts_[f.v[0]].b + f.l[1] * verts_[f.v[1]].b + f.l[2] * verts_[f.v[2]].b;
+        out.depth = f.d > 0 ? f.d : 0;
+        out.n = f.n;
+        // Nearest on an edge: the direction to that point, so that a - b = depth n holds.
+        const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
+        if (f.edge) out.n = normalized_or(q, f.n);
+        out.termination = t;
+        return finish(out);
+    }
+    // Back to the caller's scale. A flat C has depth 0; its deepest points are a common point of
+    // the cores, which the caller has from GJK (flat set).
+    CoreDepth finish(CoreDepth& out) {
+        if (flat_ >= 0) {
+            out.depth = 0;
+            out.flat = true;
+        }
+        const double inv = 1 / pair_.scale;
+        out.depth *= inv;
+        out.point_a = inv * out.point_a;
+        out.point_b = inv * out.point_b;
+        out.iterations = calls_;
+        return out;
+    }
+
+    Pair pair_;
+    Vec3 hint_;
+    uint32_t budget_;
+    uint32_t calls_ = 0;
+    double size_ = 0;
+    int flat_ = -1;  // the dimension of a flat C (0, 1, 2), or -1
+    Vec3 interior_;
+    Vec3 upper_n_;
+    Vertex upper_x_;
+    Vertex verts_[kMaxVertices];
+    Face faces_[kMaxFaces];
+    int nv_ = 0, nf_ = 0;
+};
+
+}  // namespace
+
+DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
+                               double tolerance, uint32_t max_iterations) {
+    DistanceResult r = gjk_distance(a, pose_a, b, pose_b, tolerance, max_iterations);
+    if (!r.intersecting) return r;
+    const CoreOf ca = classify(a), cb = classify(b);
+    const double margin = ca.radius + cb.radius;
+    const CoreDistance c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations);
+    CoreDepth depth;
+    double total;
+    if (!c.overlap && dot(c.unit, c.unit) > 0) {
+        // Only the radii overlap: the cores' closest points and axis, the radii less their gap.
+        depth.n = c.unit;
+        depth.point_a = c.point_a;
+        depth.point_b = c.point_b;
+        depth.iterations = c.iterations;
+        depth.termination = c.termination;
+        total = margin - c.distance;
+    } else {
+        const uint32_t budget = max_iterations < 128 ? (max_iterations < 6 ? 6 : max_iterations) : 128;
+        depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+            return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget).run(tolerance);
+        });
+        depth.iterations += c.iterations;
+        total = depth.depth + margin;
+        if (depth.flat) {  // the cores meet at GJK's common point
+            depth.point_a = c.point_a;
+            depth.point_b = c.point_b;
+        }
+    }
+    r.iterations = depth.iterations;
+    r.termination = depth.termination;
+    const Vec3 n = depth.n;
+    if (!(total > 0)) {  // touching within rounding: gjk_distance's points, the depth's axis
+        r.axis = pose_a.rotation * n;
+        return r;
+    }
+    r.distance = -total;
+    r.point_a = pose_a.apply(depth.point_a + ca.radius * n);
+    r.point_b = pose_a.apply(depth.point_b - cb.radius * n);
+    r.axis = pose_a.rotation * n;
+    r.intersecting = true;
+    return r;
+}
+
+}  // namespace kairos

@@ -1,0 +1,322 @@
+// SPDX-License-Identifier: MIT
+// Signed distance (the expanding polytope algorithm) against independent truths: closed forms for
+// spheres, boxes and capsules; the long double polytope oracle's separating-axis depth for random
+// hulls; and, for every pair, the invariant that defines the depth: B moved by depth * axis
+// touches A (gjk_distance, which EPA never calls, says 0) and moved a little further is apart by
+// that much. Both argument orders, scales 1e-3 .. 1e3, far from the origin.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../support/gjk_test_support.hpp"
+#include "../support/oracle/polytope_oracle.hpp"
+#include "gjk/gjk.hpp"
+#include "gjk/penetration.hpp"
+#include "shapes/shape.hpp"
+
+using namespace kairos;
+using namespace gjk_test;
+
+namespace {
+
+struct Judge {
+    int cases = 0, overlapping = 0, failures = 0;
+    std::vector<double> errors;  // depth error over the size
+    void fail(const std::string& what) {
+        if (++failures <= 10) ADD_FAILURE() << what;
+    }
+    double median() {
+        if (errors.empty()) return 0;
+        std::sort(errors.begin(), errors.end());
+        return errors[errors.size() / 2];
+    }
+    double worst() const { return errors.empty() ? 0 : *std::max_element(errors.begin(), errors.end()); }
+};
+
+std::string describe(const char* what, double x, const std::string& where) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return std::string(what) + " (" + buf + "): " + where;
+}
+
+// Checks one signed distance against `truth` (the signed distance, or NAN when only the
+// invariants are known) at relative accuracy `rel` of `size`; both argument orders.
+void check(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double truth, double size,
+           double rel, const std::string& where, Judge& j) {
+    for (int order = 0; order < 2; ++order) {
+        const Shape& p = order ? b : a;
+        const Shape& q = order ? a : b;
+        const Transform& xp = order ? xb : xa;
+        const Transform& xq = order ? xa : xb;
+        const std::string at = where + " order " + std::to_string(order);
+        const DistanceResult r = signed_distance(p, xp, q, xq, 1e-12, 256);
+        ++j.cases;
+        if (!std::isfinite(r.distance) || !is_finite(r.point_a) || !is_finite(r.point_b) || !is_finite(r.axis)) {
+            j.fail("non-finite result: " + at);
+            continue;
+        }
+        if (!(std::fabs(length(r.axis) - 1) <= 1e-12)) j.fail(describe("axis not unit", length(r.axis), at));
+        if (!std::isnan(truth)) {
+            const double err = std::fabs(r.distance - truth) / size;
+            j.errors.push_back(err);
+            if (!(err <= rel)) j.fail(describe("signed distance off", r.distance - truth, at + " truth " + std::to_string(truth)));
+        }
+        if (r.distance == 0 && r.intersecting) {
+            // Touching: B moved by 1e-6 of the size along the axis is apart.
+            Transform moved = xq;
+            moved.translation = xq.translation + 1e-6 * size * r.axis;
+            const DistanceResult apart = gjk_distance(p, xp, q, moved, 1e-12, 256);
+            if (!(apart.distance > 0)) j.fail(describe("touching, but still overlapping when moved along the axis", apart.distance, at));
+        }
+        if (r.distance >= 0) continue;
+        ++j.overlapping;
+        // The deepest points are depth apart along the axis.
+        const Vec3 gap = r.point_b - r.point_a - r.distance * r.axis;
+        if (!(length(gap) <= rel * size))
+            j.fail(describe("witness points not distance * axis apart", length(gap) / size, at) + " distance " +
+                   std::to_string(r.distance / size) + " axis " + std::to_string(r.axis.x) + " " +
+                   std::to_string(r.axis.y) + " " + std::to_string(r.axis.z) + " b - a " +
+                   std::to_string((r.point_b - r.point_a).x / size) + " " + std::to_string((r.point_b - r.point_a).y / size) +
+                   " " + std::to_string((r.point_b - r.point_a).z / size) + " termination " +
+                   std::to_string(int(r.termination)));
+        // Each on its shape's surface: A's support along the axis, B's against it.
+        const Vec3 sa = xp.apply(support(p, xp.to_local_direction(r.axis)));
+        const Vec3 sb = xq.apply(support(q, xq.to_local_direction(-r.axis)));
+        if (!(std::fabs(dot(r.axis, sa - r.point_a)) <= rel * size))
+            j.fail(describe("point_a not on A's support plane", dot(r.axis, sa - r.point_a) / size, at));
+        if (!(std::fabs(dot(r.axis, sb - r.point_b)) <= rel * size))
+            j.fail(describe("point_b not on B's support plane", dot(r.axis, sb - r.point_b) / size, at));
+        // B moved by depth along the axis touches A; moved 1e-6 of the size further, it is apart
+        // by that much (the minimum translation separates).
+        const double depth = -r.distance;
+        Transform moved = xq;
+        moved.translation = xq.translation + depth * r.axis;
+        const DistanceResult touch = gjk_distance(p, xp, q, moved, 1e-12, 256);
+        if (!(touch.distance <= rel * size)) j.fail(describe("B moved by the depth is apart", touch.distance / size, at));
+        moved.translation = xq.translation + (depth + 1e-6 * size) * r.axis;
+        const DistanceResult apart = gjk_distance(p, xp, q, moved, 1e-12, 256);
+        if (!(std::fabs(apart.distance - 1e-6 * size) <= rel * size + 1e-9 * size))
+            j.fail(describe("B moved past the depth is not apart by the excess", apart.distance / size - 1e-6, at));
+    }
+}
+
+Transform pose(Vec3 p, Quat q) { return make_transform(p, q); }
+
+// Spheres, a sphere and a box (centre inside and outside), axis-aligned boxes in a shared turned
+// frame, capsules whose segments stay apart: closed-form signed distances.
+TEST(Penetration, ClosedFormPairs) {
+    const uint64_t seed = 211;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Judge j;
+    for (double scale : {1e-3, 1.0, 1e3})
+        for (double far : {0.0, 1e5}) {
+            const double rel = far > 0 ? 1e-9 : 1e-10;
+            for (int i = 0; i < 60; ++i) {
+                const Quat q = random_quat(rng);
+                const Vec3 c = far * scale * Vec3{u(rng), u(rng), u(rng)};
+                const std::string where = "seed " + std::to_string(seed) + " scale " + std::to_string(scale) +
+                                          " far " + std::to_string(far) + " case " + std::to_string(i);
+                // Spheres.
+                {
+                    const double ra = scale * (0.5 + std::fabs(u(rng))), rb = scale * (0.5 + std::fabs(u(rng)));
+                    const double dist = (ra + rb) * std::fabs(u(rng));
+                    const Vec3 dir = random_unit(rng);
+                    SphereShape a(ra), b(rb);
+                    check(a, pose(c, q), b, pose(c + dist * dir, random_quat(rng)), dist - ra - rb, scale, rel,
+                          "spheres " + where, j);
+                }
+                // A sphere and a box: the box's nearest point, or (centre inside) its nearest face.
+                {
+                    const Vec3 h = scale * Vec3{0.3 + std::fabs(u(rng)), 0.3 + std::fabs(u(rng)), 0.3 + std::fabs(u(rng))};
+                    const double r = scale * (0.2 + 0.5 * std::fabs(u(rng)));
+                    const Vec3 local = 1.3 * Vec3{h.x * u(rng), h.y * u(rng), h.z * u(rng)};
+                    const Vec3 nearest{std::clamp(local.x, -h.x, h.x), std::clamp(local.y, -h.y, h.y),
+                                       std::clamp(local.z, -h.z, h.z)};
+                    double truth;
+                    if (length(local - nearest) > 0) {
+                        truth = length(local - nearest) - r;
+                    } else {
+                        truth = -(r + std::min({h.x - std::fabs(local.x), h.y - std::fabs(local.y), h.z - std::fabs(local.z)}));
+                    }
+                    BoxShape box(h);
+                    SphereShape s(r);
+                    const Transform xb = pose(c, q);
+                    check(box, xb, s, pose(xb.apply(local), random_quat(rng)), truth, scale, rel, "sphere/box " + where, j);
+                }
+                // Boxes with parallel faces: the smallest overlap of the three axes.
+                {
+                    const Vec3 ha = scale * Vec3{0.3 + std::fabs(u(rng)), 0.3 + std::fabs(u(rng)), 0.3 + std::fabs(u(rng))};
+                    const Vec3 hb = scale * Vec3{0.3 + std::fabs(u(rng)), 0.3 + std::fabs(u(rng)), 0.3 + std::fabs(u(rng))};
+                    const Vec3 t{(ha.x + hb.x) * 0.95 * u(rng), (ha.y + hb.y) * 0.95 * u(rng), (ha.z + hb.z) * 0.95 * u(rng)};
+                    const double truth = -std::min({ha.x + hb.x - std::fabs(t.x), ha.y + hb.y - std::fabs(t.y),
+                                                    ha.z + hb.z - std::fabs(t.z)});
+                    BoxShape a(ha), b(hb);
+                    const Transform xa = pose(c, q);
+                    check(a, xa, b, pose(xa.apply(t), q), truth, scale, rel, "boxes " + where, j);
+                }
+                // Capsules side by side (parallel segments offset across): the radii less the gap.
+                {
+                    const double ra = scale * (0.3 + std::fabs(u(rng))), rb = scale * (0.3 + std::fabs(u(rng)));
+                    const double gap = (ra + rb) * (0.05 + 0.9 * std::fabs(u(rng)));
+                    CapsuleShape a(ra, scale), b(rb, scale);
+                    const Transform xa = pose(c, q);
+                    const Vec3 across{gap * std::cos(3.0 * i), gap * std::sin(3.0 * i), 0.5 * scale * u(rng)};
+                    check(a, xa, b, pose(xa.apply(across), q), gap - ra - rb, scale, rel, "capsules " + where, j);
+                }
+            }
+        }
+    std::printf("closed-form pairs: %d signed distances, %d overlapping; error over the size median %.3g, max %.3g\n",
+                j.cases, j.overlapping, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_GT(j.overlapping, j.cases / 2);
+}
+
+// Random hulls and turned boxes against the oracle's depth (the smallest overlap over face normals
+// and edge cross products, long double).
+TEST(Penetration, RandomPolytopesAgainstTheOracle) {
+    const uint64_t seed = 223;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Judge j;
+    for (int i = 0; i < 400; ++i) {
+        const int na = 4 + int(rng() % 10), nb = 4 + int(rng() % 10);
+        Verts va, vb;
+        if (i % 4 == 0) {
+            va = box_vertices({0.5 + std::fabs(u(rng)), 0.5 + std::fabs(u(rng)), 0.2 + std::fabs(u(rng))});
+        } else {
+            for (int k = 0; k < na; ++k) va.push_back({u(rng), u(rng), u(rng)});
+        }
+        for (int k = 0; k < nb; ++k) vb.push_back({0.7 * u(rng), 0.7 * u(rng), 0.7 * u(rng)});
+        const ShapePtr a = hull(va), b = hull(vb);
+        const Transform xa = pose({u(rng), u(rng), u(rng)}, random_quat(rng));
+        const Transform xb = pose(xa.translation + 0.9 * random_unit(rng), random_quat(rng));
+        double ra[9], rb[9], ta[3] = {xa.translation.x, xa.translation.y, xa.translation.z},
+                             tb[3] = {xb.translation.x, xb.translation.y, xb.translation.z};
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+                const Vec3& row_a = xa.rotation.r[r];
+                const Vec3& row_b = xb.rotation.r[r];
+                ra[3 * r + c] = c == 0 ? row_a.x : (c == 1 ? row_a.y : row_a.z);
+                rb[3 * r + c] = c == 0 ? row_b.x : (c == 1 ? row_b.y : row_b.z);
+            }
+        const oracle::Result o =
+            oracle::distance(oracle::make_polytope(oracle::transform(va, ra, ta)), oracle::make_polytope(oracle::transform(vb, rb, tb)));
+        const double truth = o.intersecting ? -double(o.depth) : double(o.distance);
+        check(*a, xa, *b, xb, truth, 1.0, 1e-9, "hulls seed " + std::to_string(seed) + " case " + std::to_string(i), j);
+    }
+    std::printf("random polytopes: %d signed distances, %d overlapping; error over the size median %.3g, max %.3g\n",
+                j.cases, j.overlapping, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_GT(j.overlapping, j.cases / 4);
+    EXPECT_LT(j.overlapping, j.cases * 19 / 20);
+}
+
+// The depth shrinks to 0 through contact and continues as the distance: a box resting on a box,
+// a cylinder standing on a box, a sphere on a box, at gaps from -1e-2 to +1e-2 of the size
+// (1e-12 included), faces parallel or tilted by 1e-9 .. 1e-3 rad.
+TEST(Penetration, ContinuousThroughContact) {
+    Judge j;
+    BoxShape base({2, 2, 0.5}), top({1, 1, 0.25});
+    CylinderShape cyl(0.5, 0.25);
+    SphereShape ball(0.25);
+    const double gaps[] = {-1e-2, -1e-4, -1e-6, -1e-9, -1e-12, 0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2};
+    for (double tilt : {0.0, 1e-9, 1e-6, 1e-3})
+        for (double g : gaps)
+            for (const Shape* s : {static_cast<const Shape*>(&top), static_cast<const Shape*>(&cyl),
+                                   static_cast<const Shape*>(&ball)}) {
+                // Tilted about x by `tilt`: the lowest point rises by the half width times sin.
+                const Quat q{std::sin(tilt / 2), 0, 0, std::cos(tilt / 2)};
+                const double half_y = s == &top ? 1.0 : (s == &cyl ? 0.5 : 0.0);
+                const double half_z = 0.25;
+                const double low = s == &ball ? half_z : half_z * std::cos(tilt) + half_y * std::sin(tilt);
+                const Transform xb = pose({0.1, -0.2, 0.5 + low + g}, s == &ball ? Quat{} : q);
+                check(base, pose({0, 0, 0}, Quat{}), *s, xb, g, 1.0, 1e-10,
+                      std::string(s == &top ? "box" : (s == &cyl ? "cylinder" : "sphere")) + " resting gap " + std::to_string(g) + " tilt " + std::to_string(tilt), j);
+            }
+    std::printf("through contact: %d signed distances, %d overlapping; error median %.3g, max %.3g\n", j.cases,
+                j.overlapping, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+}
+
+// Curved shapes (cylinders, cones, rounded boxes) and deep overlaps: no closed form, so the
+// invariants, and the depth may not exceed C's support value along any direction (sampled).
+TEST(Penetration, CurvedAndDeepPairs) {
+    const uint64_t seed = 227;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Judge j;
+    CylinderShape cyl(0.5, 0.7);
+    ConeShape cone(0.6, 0.8);
+    BoxShape core({0.4, 0.3, 0.2});
+    SphereShape round(0.2);
+    MinkowskiSumShape rounded(core, round);
+    BoxShape big({3, 3, 3}), small({0.2, 0.3, 0.1});
+    const Shape* kinds[] = {&cyl, &cone, &rounded, &small};
+    int above = 0;
+    for (int i = 0; i < 240; ++i) {
+        const Shape& a = *kinds[i % 4];
+        const Shape& b = *kinds[(i / 4) % 4];
+        const Transform xa = pose({u(rng), u(rng), u(rng)}, random_quat(rng));
+        const Transform xb = pose(xa.translation + 0.6 * std::fabs(u(rng)) * random_unit(rng), random_quat(rng));
+        check(a, xa, b, xb, NAN, 1.0, 1e-8, "curved seed " + std::to_string(seed) + " case " + std::to_string(i), j);
+        const DistanceResult r = signed_distance(a, xa, b, xb, 1e-12, 256);
+        if (r.distance < 0) {
+            // depth <= h_A(n) + h_B(-n) - n.(tb - ta) ... for every unit n: sampled.
+            for (int k = 0; k < 200; ++k) {
+                const Vec3 n = random_unit(rng);
+                const double h = dot(n, xa.apply(support(a, xa.to_local_direction(n)))) -
+                                 dot(n, xb.apply(support(b, xb.to_local_direction(-n))));
+                if (h < -r.distance - 1e-9) ++above;
+            }
+        }
+    }
+    // One inside the other: a small box deep in a big one.
+    for (int i = 0; i < 20; ++i) {
+        const Vec3 c{2 * u(rng), 2 * u(rng), 2 * u(rng)};
+        check(big, pose({}, Quat{}), small, pose(c, random_quat(rng)), NAN, 1.0, 1e-9, "deep case " + std::to_string(i), j);
+    }
+    std::printf("curved and deep: %d signed distances, %d overlapping, %d sampled directions below the depth\n",
+                j.cases, j.overlapping, above);
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_EQ(above, 0);
+    EXPECT_GT(j.overlapping, j.cases / 3);
+}
+
+// Cores whose difference is flat: capsules whose segments cross (the depth is the radii), coplanar
+// triangles overlapping (depth 0: touching), a sphere centred on a capsule's segment.
+TEST(Penetration, FlatCoreDifferences) {
+    CapsuleShape a(0.3, 1), b(0.2, 1);
+    const Quat across{std::sin(0.5), 0, 0, std::cos(0.5)};  // turned 1 rad about x
+    for (int order = 0; order < 2; ++order) {
+        const Transform xa = pose({0, 0, 0}, Quat{}), xb = pose({0, 0, 0.1}, across);
+        const DistanceResult r = order ? signed_distance(b, xb, a, xa, 1e-12, 256) : signed_distance(a, xa, b, xb, 1e-12, 256);
+        EXPECT_NEAR(r.distance, -0.5, 1e-12) << "order " << order;
+        EXPECT_TRUE(r.intersecting);
+        EXPECT_NEAR(length(r.axis), 1, 1e-12);
+        // The axis is across both segments: perpendicular to each.
+        EXPECT_NEAR(r.axis.z, 0, 1e-12) << "order " << order;
+        EXPECT_NEAR(dot(r.axis, xb.rotation.col(2)), 0, 1e-12) << "order " << order;
+        EXPECT_NEAR(length(r.point_b - r.point_a - r.distance * r.axis), 0, 1e-12);
+    }
+    SphereShape s(0.4);
+    const DistanceResult r = signed_distance(a, pose({5, 5, 5}, Quat{}), s, pose({5, 5, 5.5}, Quat{}), 1e-12, 256);
+    EXPECT_NEAR(r.distance, -0.7, 1e-12);
+    EXPECT_NEAR(r.axis.z, 0, 1e-12);
+    const ShapePtr t1 = hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), t2 = hull({{0.2, 0.2, 0}, {1.2, 0.2, 0}, {0.2, 1.2, 0}});
+    for (int order = 0; order < 2; ++order) {
+        const DistanceResult f = order ? signed_distance(*t2, pose({}, Quat{}), *t1, pose({}, Quat{}), 1e-12, 256)
+                                       : signed_distance(*t1, pose({}, Quat{}), *t2, pose({}, Quat{}), 1e-12, 256);
+        EXPECT_EQ(f.distance, 0) << "order " << order;
+        EXPECT_TRUE(f.intersecting);
+        EXPECT_NEAR(std::fabs(f.axis.z), 1, 1e-12) << "order " << order;
+    }
+}
+
+}  // namespace
