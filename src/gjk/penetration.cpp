@@ -66,23 +66,18 @@ public:
             const double gap = h - face.off;
             // Support point on the face's plane within the rounding of points of C's size.
             if (gap <= floor()) return finish(face, Termination::RepeatedSupport, out);
-            if (face.d >= 0 && upper - face.d <= tolerance * upper) return finish(face, Termination::RelativeError, out);
+            // The face's own support value, not the smallest seen: the axis returned must itself
+            // give the depth (B moved by it along the axis touches A).
+            if (face.d >= 0 && h - face.d <= tolerance * h) return finish(face, Termination::RelativeError, out);
             if (!expand(x)) return finish(face, Termination::NoProgress, out);
         }
     }
 
 private:
+    // C's support point along d at the working scale (set by build_tetrahedron).
     Vec3 support(Vec3 d, Vertex& x) {
         ++calls_;
-        Vec3 w = pair_(d, x.a, x.b);
-        if (calls_ == 1) {
-            const double sc = pair_scale(x.a, x.b);
-            if (sc != 1) {
-                double unused = 0;
-                adopt_scale(pair_, sc, x.a, x.b, unused);
-                w = x.a - x.b;
-            }
-        }
+        const Vec3 w = pair_(d, x.a, x.b);
         x.w = w;
         const double m = max_abs(w);
         if (m > size_) size_ = m;
@@ -141,57 +136,91 @@ private:
 
     // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
     // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
+    //
+    // It starts from C's extreme points along the six axes, which also set the working scale:
+    // the largest of them is brought near 1 (a power of two, exact). One support point alone can
+    // lie far inside C's extent (a triangle's corner 1e-300 from the origin scaled the rest of a
+    // triangle 4 wide to overflow; found by fuzzing).
     Termination build_tetrahedron(CoreDepth& out) {
-        Vec3 d0 = normalized_or(hint_, {1, 0, 0});
-        Vertex x0, x1;
-        support(d0, x0);
-        support(-d0, x1);
-        add_vertex(x0);
-        add_vertex(x1);
-        const Vec3 e = x1.w - x0.w;
-        out.n = d0;
+        Vertex ext[6];
+        double big = 0;
+        for (int i = 0; i < 6; ++i) {
+            Vec3 d{};
+            (i < 2 ? d.x : (i < 4 ? d.y : d.z)) = i % 2 ? -1 : 1;
+            ext[i].w = pair_(d, ext[i].a, ext[i].b);
+            ++calls_;
+            big = std::fmax(big, std::fmax(max_abs(ext[i].a), max_abs(ext[i].b)));
+        }
+        const double sc = pair_scale({big, 0, 0}, {});
+        if (sc != 1) {
+            double unused = 0;
+            Vec3 a{}, b{};
+            adopt_scale(pair_, sc, a, b, unused);
+            for (Vertex& x : ext) x.a = sc * x.a, x.b = sc * x.b, x.w = x.a - x.b;
+        }
+        for (const Vertex& x : ext) size_ = std::fmax(size_, max_abs(x.w));
+        out.n = normalized_or(hint_, {1, 0, 0});
+        // The two extremes farthest apart.
+        int i0 = 0, i1 = 1;
+        for (int i = 0; i < 6; ++i)
+            for (int j = i + 1; j < 6; ++j)
+                if (length(ext[j].w - ext[i].w) > length(ext[i1].w - ext[i0].w)) i0 = i, i1 = j;
+        const Vec3 e = ext[i1].w - ext[i0].w;
         if (!(length(e) > floor())) {  // C is a point: touching
             flat_ = 0;
             return Termination::NearContact;
         }
-        // Two directions across the segment; C's points beyond the line along one of them.
+        add_vertex(ext[i0]);
+        add_vertex(ext[i1]);
+        const Vec3 o = ext[i0].w;
+        // The extreme farthest from their line, else C's supports across it.
         const Vec3 eu = normalized_or(e, {1, 0, 0});
+        auto across = [&](const Vertex& x) {
+            const Vec3 off = x.w - o;
+            return length(off - dot(off, eu) * eu);
+        };
+        Vertex far = ext[0];
+        for (const Vertex& x : ext)
+            if (across(x) > across(far)) far = x;
         const Vec3 p = normalized_or(cross(eu, std::fabs(eu.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}), {0, 0, 1});
-        const Vec3 q = cross(eu, p);
-        const Vec3 tries[4] = {p, -p, q, -q};
-        Vertex far;
-        double far_off = -1;
-        for (const Vec3& d : tries) {
-            Vertex x;
-            support(d, x);
-            const Vec3 off = x.w - x0.w;
-            const double across = length(off - dot(off, eu) * eu);
-            if (across > far_off) far = x, far_off = across;
+        if (!(across(far) > floor())) {
+            const Vec3 q = cross(eu, p);
+            for (const Vec3& d : {p, -p, q, -q}) {
+                Vertex x;
+                support(d, x);
+                if (across(x) > across(far)) far = x;
+            }
         }
-        if (!(far_off > floor())) {  // C is a segment: the normal across it nearest the hint
-            const Vec3 across = hint_ - dot(hint_, eu) * eu;
-            out.n = normalized_or(across, p);
+        if (!(across(far) > floor())) {  // C is a segment: the normal across it nearest the hint
+            out.n = normalized_or(hint_ - dot(hint_, eu) * eu, p);
             flat_ = 1;
             return Termination::NearContact;
         }
         add_vertex(far);
-        const Vec3 m = normalized_or(cross(verts_[1].w - verts_[0].w, verts_[2].w - verts_[0].w), {0, 0, 1});
-        Vertex up, down;
-        support(m, up);
-        support(-m, down);
-        const double hu = dot(m, up.w - x0.w), hd = -dot(m, down.w - x0.w);
-        if (!(std::fmax(hu, hd) > floor())) {  // C is flat: its plane's normal, toward the hint
+        // The extreme farthest from their plane, else C's supports along its normal.
+        const Vec3 m = normalized_or(cross(verts_[1].w - o, verts_[2].w - o), {0, 0, 1});
+        Vertex apex = ext[0];
+        for (const Vertex& x : ext)
+            if (std::fabs(dot(m, x.w - o)) > std::fabs(dot(m, apex.w - o))) apex = x;
+        if (!(std::fabs(dot(m, apex.w - o)) > floor())) {
+            for (const Vec3& d : {m, -m}) {
+                Vertex x;
+                support(d, x);
+                if (std::fabs(dot(m, x.w - o)) > std::fabs(dot(m, apex.w - o))) apex = x;
+            }
+        }
+        if (!(std::fabs(dot(m, apex.w - o)) > floor())) {  // C is flat: its plane's normal, toward the hint
             out.n = dot(m, hint_) < 0 ? -m : m;
             flat_ = 2;
             return Termination::NearContact;
         }
-        add_vertex(hu >= hd ? up : down);
+        add_vertex(apex);
         // The four faces, each wound so that the fourth point lies behind it.
         const int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
         for (const auto& t : tri) {
             Face f;
             bool ok = make_face(t[0], t[1], t[2], f);
-            if (ok && dot(f.n, verts_[t[3]].w) > f.d) ok = make_face(t[0], t[2], t[1], f);
+            if (ok && dot(f.n, verts_[t[3]].w) > f.off) ok = make_face(t[0], t[2], t[1], f);
             if (!ok) {  // a sliver tetrahedron: taken as flat, along the hint
                 flat_ = 2;
                 return Termination::NoProgress;
@@ -287,6 +316,9 @@ private:
         out.point_b = f.l[0] * verts_[f.v[0]].b + f.l[1] * verts_[f.v[1]].b + f.l[2] * verts_[f.v[2]].b;
         out.depth = f.d > 0 ? f.d : 0;
         out.n = f.n;
+        // The origin still beyond the polytope (the guard, with no support value seen): depth 0 at
+        // one point of the nearest face, whose two parts stand for the common point.
+        if (!(f.d > 0)) out.point_b = out.point_a;
         // Nearest on an edge: the direction to that point, so that a - b = depth n holds.
         const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
         if (f.edge) out.n = normalized_or(q, f.n);
@@ -342,7 +374,8 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         depth.termination = c.termination;
         total = margin - c.distance;
     } else {
-        const uint32_t budget = max_iterations < 128 ? (max_iterations < 6 ? 6 : max_iterations) : 128;
+        // The tetrahedron alone takes 6 to 12 support calls.
+        const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget).run(tolerance);
         });

@@ -306,12 +306,84 @@ bool check_distance(const Posed& a, const Posed& b, const SettingsCase& s, const
     return true;
 }
 
+// kairos_signed_distance on the same pair and settings, given kairos_distance's successful result
+// d (the same checks pass): apart, the same result bit for bit; overlapping, a negative distance
+// whose axis is unit, whose points are distance * axis apart, and which no support plane beats
+// (the depth is not too large); converged, the axis gives the depth (B moved by it touches).
+// Returns the signed distance (NAN when not judged).
+real check_signed_distance(const Posed& a, const Posed& b, const SettingsCase& s, const kairos_distance_result& d) {
+    kairos_distance_result r;
+    poison(r);
+    const int32_t status = observe("kairos_signed_distance", [&] {
+        return kairos_signed_distance(a.shape->shape.get(), a.pose_arg(), b.shape->shape.get(), b.pose_arg(),
+                                      s.use ? &s.settings : nullptr, &r);
+    });
+    const char* what = "kairos_signed_distance";
+    if (status != KAIROS_OK) {
+        // Only inputs near the magnitude limits may fail (no finite result) where kairos_distance
+        // succeeded.
+        if (status != KAIROS_ERROR_INVALID_ARGUMENT || inputs_moderate(a, b))
+            violation("%s failed (%s: %s) where kairos_distance succeeded; %s", what, kairos_status_name(status),
+                      kairos_last_error(), scene(a, b));
+        if (!poisoned(r)) violation("%s failed but wrote *out", what);
+        return NAN;
+    }
+    if (d.intersecting == 0) {
+        if (std::memcmp(&r, &d, sizeof r) != 0)
+            violation("%s: apart, but its result differs from kairos_distance's (%.17g, %.17g); %s", what, r.distance,
+                      d.distance, scene(a, b));
+        return r.distance;
+    }
+    const bool all_finite = std::isfinite(r.distance) && finite(r.point_a) && finite(r.point_b) && finite(r.axis);
+    if (!finite_or_report(all_finite, inputs_moderate(a, b), what)) return NAN;
+    check_termination(r.termination, what);
+    if (r.intersecting != 1) violation("%s: kairos_distance says intersecting, but intersecting is %d", what, r.intersecting);
+    if (!(r.distance <= 0)) violation("%s: overlapping with distance %.17g > 0; %s", what, r.distance, scene(a, b));
+    if (!unit(r.axis)) violation("%s: axis %s is not unit; %s", what, show(r.axis), scene(a, b));
+    if (!conditioned(a, b)) return NAN;
+    const Placed pa = place(a.model(), a.pose.pose), pb = place(b.model(), b.pose.pose);
+    const real size = pair_size(a, b);
+    const real t = s.use ? real(s.settings.tolerance) : 1e-10L;
+    const real slack = pair_slack(a, b, size) + 1e-9L * size;
+    // No plane separates by more than the distance (the depth is not too large).
+    Vr u;
+    const real g = max_gap(pa, pb, {to_real(r.axis)}, &u);
+    if (!(r.distance >= g - slack - t * size))
+        violation("%s = %.17g (termination %d), but the shapes are %.17Lg apart along (%.6Lg %.6Lg %.6Lg); %s", what,
+                  r.distance, r.termination, g, u.x, u.y, u.z, scene(a, b));
+    const bool converged = r.termination == KAIROS_TERMINATION_RELATIVE_ERROR ||
+                           r.termination == KAIROS_TERMINATION_REPEATED_SUPPORT ||
+                           r.termination == KAIROS_TERMINATION_NEAR_CONTACT;
+    // The axis gives the depth: the support planes along it overlap by the depth, within 1e-6 of
+    // the size as the witness points (a sphere's centre 1e-9 from a needle core 20 long: the
+    // cores' axis, the direction of a 1e-9 vector, is tilted by rounding 1e-7 toward the needle,
+    // whose support moves by 1e-6 along it).
+    const real along = gap(pa, pb, to_real(r.axis));
+    if (converged && !(std::fabs(along - r.distance) <= slack + (t + 1e-6L) * size))
+        violation("%s = %.17g (termination %d), but along its axis %s the shapes overlap by %.17Lg; %s", what,
+                  r.distance, r.termination, show(r.axis), -along, scene(a, b));
+    if (points_conditioned(a, b)) {
+        const Vr between = to_real(r.point_b) - to_real(r.point_a) - real(r.distance) * to_real(r.axis);
+        if (!(norm(between) <= slack + 1e-6L * size))
+            violation("%s = %.17g but point_b - point_a is %.17Lg from distance * axis (termination %d); %s", what,
+                      r.distance, norm(between), r.termination, scene(a, b));
+    }
+    return converged ? real(r.distance) : NAN;
+}
+
 void query_distance(Input& in, const Posed& a, const Posed& b) {
     const SettingsCase s = make_settings(in);
     const DistanceCall ab = call_distance(a, b, s);
     if (ab.status != KAIROS_OK || !check_distance(a, b, s, ab.result)) return;
     const DistanceCall ba = call_distance(b, a, s);
     if (ba.status != KAIROS_OK || !check_distance(b, a, s, ba.result)) return;
+    {
+        // The signed distance, both orders: the same depth within the tolerance.
+        const real sab = check_signed_distance(a, b, s, ab.result), sba = check_signed_distance(b, a, s, ba.result);
+        const real size = pair_size(a, b);
+        if (sab < 0 && sba < 0 && !(std::fabs(sab - sba) <= pair_slack(a, b, size) + (1e-9L + 2 * s.tolerance) * size))
+            violation("kairos_signed_distance(a, b) = %.17Lg but (b, a) = %.17Lg; %s", sab, sba, scene(a, b));
+    }
     if (ab.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS ||
         ba.result.termination == KAIROS_TERMINATION_MAX_ITERATIONS || !conditioned(a, b))
         return;
