@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 // GJK benchmark: Kairos against FCL (GST_INDEP), Bullet f64 (btGjkPairDetector) and libccd on the
-// same pre-generated random queries. Reports time per query (use --benchmark_repetitions and the
+// same pre-generated random queries; and the signed distance of overlapping pairs (Kairos's EPA)
+// against libccd's MPR penetration, FCL's signed distance and Bullet f64's GJK-EPA, each with its
+// depth error against a truth (the polytope oracle, or Kairos at 1e-13 on curved shapes). Reports time per query (use --benchmark_repetitions and the
 // median aggregate) and mean GJK iterations where the library exposes them. Kairos is timed twice:
 // the core's gjk_distance, and kairos_distance as users call it (the C boundary's cost is the
 // difference).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -33,6 +36,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "gjk/gjk.hpp"
+#include "gjk/penetration.hpp"
 #include "gjk_peer_bullet.hpp"
 #include "gjk_peer_fcl.hpp"
 #include "gjk_peer_shapes.hpp"
@@ -312,6 +316,176 @@ void BM_LibccdIntersect(benchmark::State& state) {
     }
 }
 
+// ---- Signed distance of overlapping pairs ----------------------------------------------------------
+
+// Overlapping pairs and their true depth: the long double oracle for polytopes (the smallest
+// overlap over face normals and edge cross products), Kairos at tolerance 1e-13 on curved shapes.
+struct Overlap {
+    std::vector<Query> q;
+    std::vector<double> depth;
+};
+Overlap& overlapping(Scenario sc) {
+    static Overlap all[5];
+    Overlap& o = all[sc];
+    if (!o.q.empty()) return o;
+    std::mt19937_64 rng(4321 + sc);
+    constexpr int kPairs = 256;
+    o.q.resize(kPairs);
+    for (Query& x : o.q) {
+        for (;;) {
+            if (sc == Hull32) {
+                x.a = hull32(rng), x.b = hull32(rng);
+            } else {
+                x.a = peer::random_spec(rng, sc == CylinderCone ? Kind::Cylinder : Kind::Box);
+                x.b = peer::random_spec(rng, sc == CylinderCone ? Kind::Cone : Kind::Box);
+            }
+            peer::place_pair(rng, x.a, x.b);
+            x.ka = peer::make_kairos(x.a), x.kb = peer::make_kairos(x.b);
+            if (gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256).intersecting) break;
+        }
+        x.fa = std::make_shared<fcl::CollisionObjectd>(fcl_geometry(x.a), fcl_transform(x.a.pose));
+        x.fb = std::make_shared<fcl::CollisionObjectd>(fcl_geometry(x.b), fcl_transform(x.b.pose));
+        x.ba = bullet_shape(x.a), x.bb = bullet_shape(x.b);
+        x.ta = bullet_transform(x.a.pose), x.tb = bullet_transform(x.b.pose);
+        x.ca = c_shape(x.a), x.cb = c_shape(x.b);
+        x.pa = c_pose(x.a.pose), x.pb = c_pose(x.b.pose);
+        if (sc == CylinderCone) {
+            o.depth.push_back(-signed_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, 1e-13, 100000).distance);
+        } else {
+            const oracle::Result r = oracle::distance(gjk_test::world_polytope(x.a.verts, x.a.pose),
+                                                      gjk_test::world_polytope(x.b.verts, x.b.pose));
+            o.depth.push_back(r.intersecting ? double(r.depth) : -double(r.distance));
+        }
+    }
+    return o;
+}
+
+// Median and largest |depth - truth| over the scenario's pairs (NAN: no answer), as counters; a
+// pair a library fails on (no result, an exception) counts in "failed".
+template <class Depth>
+void depth_errors(benchmark::State& state, const Overlap& o, Depth&& depth_of) {
+    std::vector<double> err;
+    int failed = 0;
+    for (size_t i = 0; i < o.q.size(); ++i) {
+        const double d = depth_of(o.q[i]);
+        if (std::isnan(d)) {
+            ++failed;
+            continue;
+        }
+        err.push_back(std::fabs(d - o.depth[i]));
+    }
+    std::sort(err.begin(), err.end());
+    state.counters["err_median"] = err.empty() ? NAN : err[err.size() / 2];
+    state.counters["err_max"] = err.empty() ? NAN : err.back();
+    state.counters["failed"] = failed;
+}
+
+// tolerance: 10^-range(1) (the default 1e-10, and coarser ones to compare at a peer's accuracy).
+void BM_KairosSignedDistance(benchmark::State& state) {
+    const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
+    const double tolerance = std::pow(10.0, -double(state.range(1)));
+    size_t i = 0;
+    uint64_t iters = 0, n = 0;
+    for (auto _ : state) {
+        const Query& x = o.q[i];
+        const DistanceResult r = signed_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, tolerance, 256);
+        benchmark::DoNotOptimize(r);
+        iters += r.iterations, ++n;
+        i = (i + 1) % o.q.size();
+    }
+    state.counters["iterations"] = double(iters) / double(n);
+    depth_errors(state, o, [&](const Query& x) {
+        return -signed_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, tolerance, 256).distance;
+    });
+}
+
+void BM_KairosCapiSignedDistance(benchmark::State& state) {
+    const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
+    size_t i = 0;
+    for (auto _ : state) {
+        const Query& x = o.q[i];
+        kairos_distance_result r;
+        const int32_t status = kairos_signed_distance(x.ca.get(), &x.pa, x.cb.get(), &x.pb, nullptr, &r);
+        benchmark::DoNotOptimize(status);
+        benchmark::DoNotOptimize(r);
+        i = (i + 1) % o.q.size();
+    }
+}
+
+void BM_LibccdMprPenetration(benchmark::State& state) {
+    const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
+    ccd_t c;
+    CCD_INIT(&c);
+    c.support1 = c.support2 = ccd_support;
+    c.center1 = c.center2 = ccd_center;
+    c.max_iterations = 1000;
+    c.mpr_tolerance = 1e-10;
+    auto depth_of = [&](const Query& x) {
+        ccd_real_t depth = 0;
+        ccd_vec3_t dir, pos;
+        return ccdMPRPenetration(&x.a, &x.b, &c, &depth, &dir, &pos) == 0 ? double(depth) : NAN;
+    };
+    size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(depth_of(o.q[i]));
+        i = (i + 1) % o.q.size();
+    }
+    depth_errors(state, o, depth_of);
+}
+
+void BM_FclSignedDistance(benchmark::State& state) {
+    const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
+    // FCL's signed distance runs libccd's GJK and EPA (GST_LIBCCD); it may throw on degenerate
+    // input (FCL issues 493, 495), counted as a failure.
+    auto depth_of = [](const Query& x) {
+        fcl::DistanceRequestd req;
+        req.enable_nearest_points = true;
+        req.enable_signed_distance = true;
+        req.gjk_solver_type = fcl::GST_LIBCCD;
+        req.distance_tolerance = kTolerance;
+        fcl::DistanceResultd res;
+        try {
+            fcl::distance(x.fa.get(), x.fb.get(), req, res);
+        } catch (...) {
+            return double(NAN);
+        }
+        return -res.min_distance;
+    };
+    size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(depth_of(o.q[i]));
+        i = (i + 1) % o.q.size();
+    }
+    depth_errors(state, o, depth_of);
+}
+
+void BM_BulletF64Epa(benchmark::State& state) {
+    const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
+    // btGjkPairDetector runs btGjkEpaPenetrationDepthSolver when GJK finds the shapes overlapping.
+    auto depth_of = [](const Query& x) {
+        btVoronoiSimplexSolver simplex;
+        btGjkEpaPenetrationDepthSolver epa;
+        btGjkPairDetector detector(x.ba.get(), x.bb.get(), &simplex, &epa);
+        btGjkPairDetector::ClosestPointInput in;
+        in.m_transformA = x.ta;
+        in.m_transformB = x.tb;
+        btPointCollector out;
+        detector.getClosestPoints(in, out, nullptr);
+        return out.m_hasResult ? -double(out.m_distance) : double(NAN);
+    };
+    size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(depth_of(o.q[i]));
+        i = (i + 1) % o.q.size();
+    }
+    depth_errors(state, o, depth_of);
+}
+
+void overlap_scenarios(benchmark::internal::Benchmark* b) {
+    b->ArgName("scenario");
+    for (int s : {BoxBox, Hull32, CylinderCone}) b->Arg(s);
+}
+
 void scenarios(benchmark::internal::Benchmark* b) {
     b->ArgName("scenario");
     for (int s : {BoxBox, Hull32, CylinderCone, SphereCapsule}) b->Arg(s);
@@ -328,5 +502,12 @@ BENCHMARK(BM_BulletF64Distance)->Apply(scenarios);
 BENCHMARK(BM_KairosIntersect)->ArgName("cached")->Arg(0)->Arg(1);
 // mpr: 0 ccdGJKIntersect, 1 ccdMPRIntersect.
 BENCHMARK(BM_LibccdIntersect)->ArgName("mpr")->Arg(0)->Arg(1);
+
+// Overlapping pairs, scenario: 0 box/box, 1 hull32/hull32, 2 cylinder/cone.
+BENCHMARK(BM_KairosSignedDistance)->ArgNames({"scenario", "tol_exp"})->ArgsProduct({{BoxBox, Hull32, CylinderCone}, {10, 6}});
+BENCHMARK(BM_KairosCapiSignedDistance)->Apply(overlap_scenarios);
+BENCHMARK(BM_LibccdMprPenetration)->Apply(overlap_scenarios);
+BENCHMARK(BM_FclSignedDistance)->Apply(overlap_scenarios);
+BENCHMARK(BM_BulletF64Epa)->Apply(overlap_scenarios);
 
 BENCHMARK_MAIN();

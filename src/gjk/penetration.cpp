@@ -25,13 +25,30 @@ struct Vertex {
 struct Face {
     uint8_t v[3];  // counter-clockwise seen from outside
     Vec3 n;        // outward unit normal
-    // The origin's distance to the triangle (not its plane: a sliver's plane, tilted by rounding,
-    // can pass nearer the origin than any of its points), or the plane's offset n . x when the
-    // origin lies beyond it (< 0).
+    // The origin's distance to the triangle once resolved (not its plane: a sliver's plane, tilted
+    // by rounding, can pass nearer the origin than any of its points), or the plane's offset
+    // n . x when the origin lies beyond it (< 0).
     double d;
-    double off;    // n . x for x on the face
-    double l[3];
-    bool edge;     // the nearest point is on an edge (the origin's projection falls outside)   // the triangle's nearest point to the origin as a combination of the corners
+    double off;     // n . x for x on the face
+    double l[3];    // the triangle's nearest point to the origin as a combination of the corners
+    bool edge;      // that point is on an edge (the origin's projection falls outside)
+    bool resolved;  // d, l and edge are known (see resolve); until then d is the plane's offset
+};
+
+// Fixed storage whose slots start uninitialised: Vec3 zeroes itself, and zeroing the polytope's
+// arrays (30 kB) cost more than the expansion of a box pair. A slot is written before it is read.
+template <class T, int N>
+class Slots {
+public:
+    T& operator[](int i) { return slot_[i].t; }
+    const T& operator[](int i) const { return slot_[i].t; }
+
+private:
+    union Slot {
+        T t;
+        Slot() {}
+    };
+    Slot slot_[N];
 };
 
 // The cores' depth in A's frame at the caller's scale: a - b = depth * n for the deepest points.
@@ -54,9 +71,14 @@ public:
         if (out.termination != Termination::None) return finish(out);
         double upper = INFINITY;  // smallest support value of C along a unit direction (upper_n_)
         for (;;) {
-            int f = 0;
-            for (int i = 1; i < nf_; ++i)
-                if (faces_[i].d < faces_[f].d) f = i;
+            int f;
+            for (;;) {
+                f = 0;
+                for (int i = 1; i < nf_; ++i)
+                    if (faces_[i].d < faces_[f].d) f = i;
+                if (faces_[f].resolved) break;
+                resolve(faces_[f]);
+            }
             const Face face = faces_[f];
             if (calls_ >= budget_ || nv_ == kMaxVertices) return finish(face, Termination::MaxIterations, out);
             Vertex x;
@@ -96,28 +118,37 @@ private:
     bool make_face(int i, int j, int k, Face& f) const {
         const Vec3 e1 = verts_[j].w - verts_[i].w, e2 = verts_[k].w - verts_[i].w;
         const Vec3 n = cross(e1, e2);
-        const double len = length(n);
-        if (!(len > 64 * kEps * length(e1) * length(e2))) return false;
+        const double nn = dot(n, n);
+        if (!(nn > (64 * kEps) * (64 * kEps) * dot(e1, e1) * dot(e2, e2))) return false;
         f.v[0] = uint8_t(i), f.v[1] = uint8_t(j), f.v[2] = uint8_t(k);
-        f.n = (1 / len) * n;
-        const Vec3 w[3] = {verts_[i].w, verts_[j].w, verts_[k].w};
-        f.off = (dot(f.n, w[0]) + dot(f.n, w[1]) + dot(f.n, w[2])) / 3;
+        f.n = (1 / std::sqrt(nn)) * n;
+        f.off = (dot(f.n, verts_[i].w) + dot(f.n, verts_[j].w) + dot(f.n, verts_[k].w)) / 3;
         f.d = f.off;
-        // Area coordinates of the origin's projection p = d n.
-        const Vec3 p = f.d * f.n;
-        double sum = 0, least = INFINITY;
+        f.resolved = false;
+        return true;
+    }
+
+    // Where the origin's nearest point on face f lies: the area coordinates of its projection
+    // p = off n, or, when p falls outside the triangle, the nearest point of its edges, whose
+    // distance (above the plane's) becomes f.d. Done only for faces that come up as the nearest
+    // (most never do): d can only grow, so a face whose d is resolved and least is the nearest.
+    void resolve(Face& f) const {
+        f.resolved = true;
+        const Vec3 w[3] = {verts_[f.v[0]].w, verts_[f.v[1]].w, verts_[f.v[2]].w};
+        const Vec3 p = f.off * f.n;
+        double sum = 0;
+        bool inside = true;
         for (int c = 0; c < 3; ++c) {
             f.l[c] = dot(f.n, cross(w[(c + 1) % 3] - p, w[(c + 2) % 3] - p));
             sum += f.l[c];
-            least = std::fmin(least, f.l[c]);
+            inside = inside && f.l[c] >= 0;
         }
-        f.edge = !(least >= 0 || f.d < 0);
+        f.edge = !(inside || f.off < 0);
         if (!f.edge) {
             const double s = sum > 0 ? 1 / sum : 0;
             for (double& c : f.l) c = sum > 0 ? (c > 0 ? c * s : 0) : 1.0 / 3;
-            return true;
+            return;
         }
-        // p outside the triangle: the nearest point of its edges.
         double best = INFINITY;
         for (int c = 0; c < 3; ++c) {
             const Vec3 e = w[(c + 1) % 3] - w[c];
@@ -131,7 +162,6 @@ private:
             }
         }
         if (best > f.d) f.d = best;
-        return true;
     }
 
     // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
@@ -285,7 +315,7 @@ private:
         // The new faces, checked before anything changes.
         const int xi = nv_;
         verts_[xi] = x;
-        Face fresh[kMaxVertices];
+        Slots<Face, kMaxVertices> fresh;
         for (int i = 0; i < nh; ++i) {
             if (!make_face(from[i], to[i], xi, fresh[i])) return false;
             if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
@@ -349,8 +379,8 @@ private:
     Vec3 interior_;
     Vec3 upper_n_;
     Vertex upper_x_;
-    Vertex verts_[kMaxVertices];
-    Face faces_[kMaxFaces];
+    Slots<Vertex, kMaxVertices> verts_;
+    Slots<Face, kMaxFaces> faces_;
     int nv_ = 0, nf_ = 0;
 };
 
@@ -362,7 +392,16 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     if (!r.intersecting) return r;
     const CoreOf ca = classify(a), cb = classify(b);
     const double margin = ca.radius + cb.radius;
-    const CoreDistance c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations);
+    CoreDistance c;
+    if (margin > 0) {
+        c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations);
+    } else {  // the cores are the shapes: gjk_distance has answered already (they overlap)
+        c.overlap = true;
+        c.center_offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+        c.point_a = pose_a.apply_inverse(r.point_a);
+        c.point_b = pose_a.apply_inverse(r.point_b);
+        c.iterations = r.iterations;
+    }
     CoreDepth depth;
     double total;
     if (!c.overlap && dot(c.unit, c.unit) > 0) {
