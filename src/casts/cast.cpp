@@ -374,8 +374,15 @@ private:
         out.normal = normal_;
         out.v = sx_.bits != 0 ? sx_.v : v_;
         if (sx_.bits != 0) {
-            sx_.closest_points(out.point_a, out.point_b);
-            out.size = std::sqrt(sx_.max_norm_sq());
+            // Coordinates that do not reproduce v (a triangle of two opposite rim points of a
+            // cylinder's cap and the cap's centre between them: collinear, coordinates summing to
+            // 0.5, a hit point 2.5 from the ray point; found by fuzzing) give way to the nearest
+            // sub-simplex whose coordinates do, as the distance's witness points do.
+            Simplex sx = sx_;
+            if (gjk_detail::kBitCount[sx.bits] >= 2 && !sx.coordinates_reproduce_v(0x1p-60))
+                sx.nearest_in_hull(sx.bits, INFINITY, 0x1p-60);
+            sx.closest_points(out.point_a, out.point_b);
+            out.size = std::sqrt(sx.max_norm_sq());
         }
         if (sup_.scale != 1) {
             const double inv = 1 / sup_.scale;  // exact: a power of two within 2^+-1000

@@ -554,3 +554,23 @@ TEST(ShapeCast, ARoundingStopOnALongShapeKeepsASeparatingNormal) {
         EXPECT_GT(dot(d.axis, c.normal), 1 - 1e-6) << "order " << order;
     }
 }
+
+// A fuzz finding: a ray onto a cylinder's cap whose simplex ended as two opposite rim points and
+// the cap's centre between them (collinear: coordinates summing to 0.5), so the hit point came out
+// 2.5 from the ray point at toi. The hit point must be the ray point on the surface.
+TEST(ShapeCast, ACollinearSimplexOnACapGivesTheRayPoint) {
+    CylinderShape c(9.9728084229800871, 2.1520714122224764);
+    const Transform x = make_transform({-0.36798657206073093, -0.48517586022735948, -1.0188754100862134},
+                                       normalized(Quat{0.53306121394985317, 0.53306121394985317, 0.53306121394985317,
+                                                       0.38410574917192586}));
+    const Vec3 o{-2.996078431372549, -2.996078431372549, -2.996078431372549};
+    const Vec3 t{5.2561837186236362, 5.0218051422903791, 3.9544060425726713};
+    for (double tolerance : {1e-10, 1e-4}) {
+        const CastResult r = ray_cast(c, x, o, t, tolerance, 256);
+        ASSERT_TRUE(r.hit);
+        const Vec3 at = o + r.toi * t;
+        EXPECT_LT(length(r.point - at), 1e-9) << "tolerance " << tolerance;
+        // On the cap: local z = -h.
+        EXPECT_NEAR(x.apply_inverse(r.point).z, -c.half_height, 1e-9);
+    }
+}
