@@ -319,4 +319,33 @@ TEST(Penetration, FlatCoreDifferences) {
     }
 }
 
+// A fuzz finding: a ball whose centre lies 1e-12 from a needle hull 2 long (its core). The cores'
+// axis is then the direction of a 1e-12 vector, tilted by rounding toward the needle, and the
+// needle's support along it moved by 1e-4: the axis did not give the depth. Balls 1e-12 .. 1e-3
+// of the length off needles along turned directions: the invariants at 1e-6 of the size.
+TEST(Penetration, ABallOnANeedlesAxis) {
+    const uint64_t seed = 229;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Judge j;
+    for (double off : {0.0, 1e-12, 1e-9, 1e-6, 1e-3})
+        for (int i = 0; i < 30; ++i) {
+            const Vec3 dir = random_unit(rng);
+            Verts pts;
+            for (int k = 0; k < 40; ++k) {
+                const double s = u(rng);
+                pts.push_back({s * dir.x + 1e-9 * u(rng), s * dir.y + 1e-9 * u(rng), s * dir.z + 1e-9 * u(rng)});
+            }
+            const ShapePtr needle = hull(pts);
+            SphereShape ball(1);
+            const Vec3 across = normalized_or(cross(dir, random_unit(rng)), {1, 0, 0});
+            const Vec3 centre = 0.3 * u(rng) * dir + off * across;
+            check(*needle, pose({}, Quat{}), ball, pose(centre, Quat{}), NAN, 2.0, 1e-6,
+                  "needle seed " + std::to_string(seed) + " offset " + std::to_string(off) + " case " + std::to_string(i), j);
+        }
+    std::printf("ball on a needle: %d signed distances, %d overlapping\n", j.cases, j.overlapping);
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_EQ(j.overlapping, j.cases);
+}
+
 }  // namespace
