@@ -507,18 +507,21 @@ enum Method {
     BT_GJK,
     BT_SUBSIMPLEX,
     BT_CCC,
+    K_SIGNED,    // appended: kairos_signed_distance (penetration depth)
+    FCL_SIGNED,  // FCL's signed distance (libccd GJK + EPA)
     kMethods
 };
 const char* kMethodName[kMethods] = {
     "kairos_distance",   "kairos_intersect",  "kairos_ray_cast",     "kairos_shape_cast",   "kairos_motion_cast",
     "ccd_gjk_intersect", "ccd_mpr_intersect", "ccd_mpr_penetration", "fcl_distance_libccd", "fcl_distance_indep",
-    "fcl_continuous",    "bullet_gjk_pair",   "bullet_subsimplex",   "bullet_continuous"};
+    "fcl_continuous",    "bullet_gjk_pair",   "bullet_subsimplex",   "bullet_continuous",  "kairos_signed_distance",
+    "fcl_signed_distance"};
 
 bool applies(Method m, QType t) {
     switch (t) {
         case QType::Pair:
             return m == K_DIST || m == K_INTER || m == CCD_GJK || m == CCD_MPR || m == CCD_MPR_PEN ||
-                   m == FCL_DIST_CCD || m == FCL_DIST_INDEP || m == BT_GJK;
+                   m == FCL_DIST_CCD || m == FCL_DIST_INDEP || m == BT_GJK || m == K_SIGNED || m == FCL_SIGNED;
         case QType::Cast:
             return m == K_SHAPE || m == K_MOTION || m == FCL_CCD || m == BT_SUBSIMPLEX || m == BT_CCC;
         case QType::Ray:
@@ -529,6 +532,7 @@ bool applies(Method m, QType t) {
     return false;
 }
 bool is_distance(Method m) { return m == K_DIST || m == FCL_DIST_CCD || m == FCL_DIST_INDEP || m == BT_GJK; }
+bool is_signed(Method m) { return m == K_SIGNED || m == FCL_SIGNED; }
 
 // One answer. status: 0 answered, 1 error status or exception, 2 crash, 3 hang.
 struct Answer {
@@ -578,9 +582,9 @@ Answer run_kairos(Method m, const Case& k) {
     }
     const kairos_pose pa = kpose(k.pa), pb = kpose(k.pb);
     int32_t st = KAIROS_OK;
-    if (m == K_DIST) {
+    if (m == K_DIST || m == K_SIGNED) {
         kairos_distance_result r;
-        st = kairos_distance(a, &pa, b, &pb, &qs, &r);
+        st = m == K_DIST ? kairos_distance(a, &pa, b, &pb, &qs, &r) : kairos_signed_distance(a, &pa, b, &pb, &qs, &r);
         ans.value = r.distance, ans.verdict = r.intersecting,
         ans.capped = r.termination == KAIROS_TERMINATION_MAX_ITERATIONS;
     } else if (m == K_INTER) {
@@ -733,14 +737,15 @@ fcl::Transform3d fcl_tf(const Pose& p) {
 Answer run_fcl(Method m, const Case& k) {
     Answer ans;
     const auto ga = fcl_geom(k.A), gb = fcl_geom(k.B);
-    if (m == FCL_DIST_CCD || m == FCL_DIST_INDEP) {
+    if (m == FCL_DIST_CCD || m == FCL_DIST_INDEP || m == FCL_SIGNED) {
         fcl::DistanceRequestd req;
-        req.gjk_solver_type = m == FCL_DIST_CCD ? fcl::GST_LIBCCD : fcl::GST_INDEP;
+        req.gjk_solver_type = m == FCL_DIST_INDEP ? fcl::GST_INDEP : fcl::GST_LIBCCD;
+        req.enable_signed_distance = m == FCL_SIGNED;
         req.distance_tolerance = 1e-12;  // default 1e-6
         fcl::DistanceResultd res;
         const double d = fcl::distance(ga.get(), fcl_tf(k.pa), gb.get(), fcl_tf(k.pb), req, res);
-        ans.value = d;  // -1 when the shapes collide (unsigned distance)
-        ans.verdict = d <= 0;
+        ans.value = m == FCL_SIGNED ? res.min_distance : d;  // unsigned: -1 when the shapes collide
+        ans.verdict = ans.value <= 0;
         return ans;
     }
     fcl::ContinuousCollisionRequestd req;
@@ -835,9 +840,12 @@ Answer run_one(Method m, const Case& k) {
             case CCD_MPR:
             case CCD_MPR_PEN:
                 return run_ccd(m, k);
+            case K_SIGNED:
+                return run_kairos(m, k);
             case FCL_DIST_CCD:
             case FCL_DIST_INDEP:
             case FCL_CCD:
+            case FCL_SIGNED:
                 return run_fcl(m, k);
             default:
                 return run_bullet(m, k);
@@ -879,6 +887,13 @@ Verdict judge(Method m, const Case& k, const Answer& a) {
             const double got = std::max(a.value, 0.0);
             v.err = std::fabs(got - truth_d) / size, v.err_valid = true;
             if (v.err > kDistanceBound) v.fail = true, v.why = "distance error";
+            return v;
+        }
+        // Signed distances: against the exact signed distance when it is known (apart, or a
+        // depth the oracle gives), else the verdict only.
+        if (is_signed(m) && (t.dist >= 0 || t.depth_known)) {
+            v.err = std::fabs(a.value - double(t.dist)) / size, v.err_valid = true;
+            if (v.err > kDistanceBound) v.fail = true, v.why = t.dist < 0 ? "penetration depth error" : "distance error";
             return v;
         }
         const bool judged = std::fabs(double(t.dist)) > kBand * size;
