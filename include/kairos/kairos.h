@@ -302,12 +302,13 @@ KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pos
  * toi: never later than the true first contact by more than the tolerance, never a missed
  * contact. normal: unit, from A toward B (the latest clipping plane; normal . (translation_b -
  * translation_a) < 0). point: the contact point at toi, world frame (from the final simplex's
- * barycentric coordinates). Shapes that overlap or touch at the start: hit 1, toi 0, and normal
- * = -(translation_b - translation_a), unit: the contact opposes the relative motion as every
- * later contact does, so a solver that removes the approach velocity along the normal stops the
- * motion into the overlap (it is not a minimum-penetration direction); with no relative motion
- * it is the unit direction from A's local origin toward B's (+z when they coincide). No hit:
- * hit 0, toi 1, point and normal unspecified. */
+ * barycentric coordinates). Shapes that overlap at the start: hit 1, toi 0, normal the minimum
+ * translation's axis from A toward B and point midway between the deepest points, as
+ * kairos_signed_distance gives them (call it for the depth). Shapes that touch at the start (depth
+ * 0 within rounding): hit 1, toi 0, normal = -(translation_b - translation_a), unit (the contact
+ * opposes the relative motion as every later contact does); with no relative motion the unit
+ * direction from A's local origin toward B's (+z when they coincide). No hit: hit 0, toi 1,
+ * point and normal unspecified. */
 KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* pose_a, kairos_vec3 translation_a,
                                      const kairos_shape* b, const kairos_pose* pose_b, kairos_vec3 translation_b,
                                      const kairos_query_settings* settings, kairos_cast_result* out);
@@ -319,7 +320,8 @@ KAIROS_API int32_t kairos_shape_cast(const kairos_shape* a, const kairos_pose* p
  * axis-aligned bounding box; the other one when one shape is a point; translations included:
  * the gap bound holds whether or not the shapes turn), so a near miss closer than that counts
  * as a contact; normal (unit, A toward B) and point (world, midway between the closest points)
- * come from the distance there. Shapes overlapping at the start: toi 0, normal opposing the
+ * come from the distance there. Shapes overlapping at the start: toi 0, normal and point as
+ * kairos_shape_cast gives them (the minimum translation); touching at the start: normal opposing the
  * relative velocity of the contact point. Motions whose start and end orientations are equal
  * (q or -q) take the exact shape cast. iterations: GJK support evaluations of all the distance
  * queries and casts used. termination: HIT, SEPARATED (no hit), or MAX_ITERATIONS / NO_PROGRESS

@@ -9,6 +9,7 @@
 #include "casts/cast.hpp"
 #include "gjk/closed_forms.hpp"
 #include "gjk/gjk.hpp"
+#include "gjk/penetration.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
@@ -559,6 +560,16 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     const Vec3 pb = l.point_b - cb.radius * dir + l.lambda * tb;
     out.normal = pose_a.rotation * n;
     out.point = pose_a.apply(0.5 * (pa + pb));
+    // Overlapping at the start (depth > 0): the minimum translation's axis and the deepest points'
+    // midpoint (touching keeps the rule above, opposing the relative motion).
+    if (out.toi == 0) {
+        const DistanceResult sd = signed_distance(a, pose_a, b, pose_b, tolerance, max_iterations);
+        if (sd.distance < 0) {
+            out.normal = sd.axis;
+            out.point = 0.5 * (sd.point_a + sd.point_b);
+        }
+        return out;
+    }
     // A stop on a rounding rule can leave a simplex whose v, and the last clipping plane, are far
     // from the contact normal on a long shape (15 degrees on a capsule stretched to 1e5 by a
     // transform, 1e-4 short of contact; found by fuzzing): the normal and point then come from

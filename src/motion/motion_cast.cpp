@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "gjk/gjk.hpp"
+#include "gjk/penetration.hpp"
 #include "shapes/radius.hpp"
 
 namespace kairos {
@@ -224,10 +225,17 @@ private:
         if (!dist_.intersecting && dist_.distance > 0) {
             r.normal = dist_.axis;
         } else if (t0_ == 0) {
-            // Overlap at the start: oppose the relative velocity of the contact point (B's
-            // relative to A's), as shape_cast's -r; else from A's origin toward B's.
-            const Vec3 rel = body_b_.velocity(r.point, 0) - body_a_.velocity(r.point, 0);
-            r.normal = normalized_or(-rel, normalized_or(pb_.translation - pa_.translation, dist_.axis));
+            // Overlap at the start: the minimum translation's axis, as shape_cast's; touching, the
+            // normal opposes the relative velocity of the contact point (B's relative to A's), else
+            // points from A's origin toward B's.
+            const DistanceResult sd = signed_distance(a_, pa_, b_, pb_, tolerance_, max_iterations_);
+            if (sd.distance < 0) {
+                r.normal = sd.axis;
+                r.point = 0.5 * (sd.point_a + sd.point_b);
+            } else {
+                const Vec3 rel = body_b_.velocity(r.point, 0) - body_a_.velocity(r.point, 0);
+                r.normal = normalized_or(-rel, normalized_or(pb_.translation - pa_.translation, dist_.axis));
+            }
         } else {
             r.normal = clipped_ ? clip_normal_ : dist_.axis;
         }

@@ -35,6 +35,41 @@ struct WorldFixture : ::testing::Test {
     kairos_shape* cube = nullptr;
 };
 
+// Two cubes overlapping at the start of a step (one sliding sideways through the other): the
+// contact is at toi 0 with the minimum translation's normal (+x from a toward b: the cubes
+// overlap by 0.2 along x, 1 along y and z), in every broad phase; kairos_signed_distance gives
+// the depth at the same poses.
+TEST_F(WorldFixture, OverlapAtTheStartGivesTheMinimumTranslation) {
+    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
+                       KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+        SCOPED_TRACE(bp);
+        kairos_world_settings s;
+        kairos_world_settings_init(&s);
+        s.broad_phase = bp;
+        kairos_world* w = nullptr;
+        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        kairos_object_id a = 0, b = 0;
+        kairos_pose pa = at(0, 0, 0), pb = at(0.8, 0, 0);
+        ASSERT_EQ(kairos_world_add(w, cube, &pa, 1, &a), KAIROS_OK);
+        ASSERT_EQ(kairos_world_add(w, cube, &pb, 2, &b), KAIROS_OK);
+        const kairos_pose to = at(0.8, 0.5, 0);
+        ASSERT_EQ(kairos_world_move(w, b, &to), KAIROS_OK);
+        ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+        const kairos_contact* c = nullptr;
+        size_t n = 0;
+        ASSERT_EQ(kairos_world_contacts(w, &c, &n), KAIROS_OK);
+        ASSERT_EQ(n, 1u);
+        EXPECT_EQ(c[0].toi, 0);
+        const double sign = c[0].a == a ? 1 : -1;
+        EXPECT_NEAR(c[0].normal.x, sign, 1e-12);
+        kairos_distance_result d;
+        ASSERT_EQ(kairos_signed_distance(cube, &pa, cube, &pb, nullptr, &d), KAIROS_OK);
+        EXPECT_NEAR(d.distance, -0.2, 1e-12);
+        EXPECT_NEAR(d.axis.x, 1, 1e-12);
+        kairos_world_destroy(w);
+    }
+}
+
 TEST_F(WorldFixture, BulletThroughAWallInEveryBroadPhase) {
     for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
                        KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {

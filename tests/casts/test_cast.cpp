@@ -286,22 +286,29 @@ TEST(ShapeCast, SphereSphereAndSphereBoxClosedForms) {
 
 TEST(ShapeCast, OverlapAtStartAndZeroTranslation) {
     ShapePtr a(new BoxShape({1, 1, 1})), b(new BoxShape({0.5, 0.5, 0.5}));
-    // Overlapping, moving: hit at 0 with normal -r (unit).
+    // Overlapping, moving: hit at 0 with the minimum translation's axis (the overlaps along x, y,
+    // z are 0.3, 1.5, 1.5: +x) and the deepest points' midpoint (x between 1 and 0.7).
     CastResult r = shape_cast(*a, at({}), {1, 0, 0}, *b, at({1.2, 0, 0}), {0, 3, 0}, kTol, kMaxIt);
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.toi, 0);
+    EXPECT_NEAR(r.normal.x, 1, 1e-12);
+    EXPECT_NEAR(r.point.x, 0.85, 1e-12);
+    // Overlapping, no relative motion: the same rule (+y).
+    r = shape_cast(*a, at({}), {2, 0, 0}, *b, at({0, 1.2, 0}), {2, 0, 0}, kTol, kMaxIt);
+    EXPECT_TRUE(r.hit);
+    EXPECT_EQ(r.toi, 0);
+    EXPECT_NEAR(r.normal.y, 1, 1e-12);
+    // Touching (depth 0) and moving: the normal opposes the relative motion, -r (unit).
+    r = shape_cast(*a, at({}), {1, 0, 0}, *b, at({1.5, 0, 0}), {0, 3, 0}, kTol, kMaxIt);
     EXPECT_TRUE(r.hit);
     EXPECT_EQ(r.toi, 0);
     EXPECT_NEAR(r.normal.x, 1 / std::sqrt(10.0), 1e-15);
     EXPECT_NEAR(r.normal.y, -3 / std::sqrt(10.0), 1e-15);
-    // Overlapping, no relative motion: from A's origin toward B's.
-    r = shape_cast(*a, at({}), {2, 0, 0}, *b, at({0, 1.2, 0}), {2, 0, 0}, kTol, kMaxIt);
-    EXPECT_TRUE(r.hit);
-    EXPECT_EQ(r.toi, 0);
-    EXPECT_NEAR(r.normal.y, 1, 1e-15);
-    // Same origins: world +z (whatever A's orientation).
+    // Same origins: every face axis is a minimum translation (depth 1.5): one of them.
     r = shape_cast(*a, at({}), {}, *b, at({}), {}, kTol, kMaxIt);
-    EXPECT_NEAR(r.normal.z, 1, 1e-15);
+    EXPECT_NEAR(max_abs(r.normal), 1, 1e-12);
     r = shape_cast(*a, at({}, Quat{0.5, 0.5, 0.5, 0.5}), {}, *b, at({}), {}, kTol, kMaxIt);
-    EXPECT_NEAR(r.normal.z, 1, 1e-15);
+    EXPECT_NEAR(max_abs(r.normal), 1, 1e-12);
     // Separated, no relative motion: a miss.
     r = shape_cast(*a, at({}), {3, 3, 3}, *b, at({2, 0, 0}), {3, 3, 3}, kTol, kMaxIt);
     EXPECT_FALSE(r.hit);
