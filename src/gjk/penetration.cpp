@@ -399,7 +399,8 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     const double margin = ca.radius + cb.radius;
     CoreDistance c;
     if (margin > 0) {
-        c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations);
+        // As the expansion, at least 16 support calls: a guard-stopped GJK's gap is no gap.
+        c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations < 16 ? 16 : max_iterations);
     } else {  // the cores are the shapes: gjk_distance has answered already (they overlap)
         c.overlap = true;
         c.center_offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
@@ -411,9 +412,11 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     // apart it is the direction of a 1e-12 vector, tilted by rounding toward the needle, whose
     // support then moves by 1e-4 along it (found by fuzzing): such cores go to the expansion,
     // whose faces along the needle give the axis.
-    bool axis_shows_gap = false;
+    bool apart = false, axis_shows_gap = false;
+    double along = 0;  // the cores' separation along their axis: a lower bound of their gap
     if (!c.overlap && dot(c.unit, c.unit) > 0) {
-        const double along = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+        apart = true;
+        along = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             Vec3 pa, pb;
             return -dot(c.unit, pair(c.unit, pa, pb));
         });
@@ -433,17 +436,32 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     } else {
         // The tetrahedron alone takes 6 to 12 support calls.
         const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
+        // The cores' support value along an axis (their overlap along it; < 0: a gap), and the
+        // support points that give it.
+        Vec3 sa, sb;
+        auto overlap_along = [&](Vec3 n) {
+            return with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) { return dot(n, pair(n, sa, sb)); });
+        };
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget).run(tolerance);
         });
         depth.iterations += c.iterations;
-        // Cores whose axis did not show their gap are taken as touching: the gap was at rounding
-        // level, or not a gap at all (a guard-stopped GJK: 9.9 for cores that overlap, found by
-        // fuzzing).
         total = depth.depth + margin;
-        if (depth.flat) {  // the cores meet at GJK's common point
+        if (depth.flat) {  // the cores meet: at a point of A's core (GJK's), both deepest points
             depth.point_a = c.point_a;
-            depth.point_b = c.point_b;
+            depth.point_b = c.point_a;
+        }
+        if (apart && along > 0 && margin - along < total) {
+            // The cores' own axis shows a gap the expansion (cores apart: nothing to enclose)
+            // could not: the radii less that gap, along it, an upper bound of the depth that the
+            // axis itself gives (a ball 0.46 off a cylinder 1e4 long; found by fuzzing). The
+            // deepest points: A's core's support point along it, and B's the depth behind.
+            overlap_along(c.unit);
+            depth.n = c.unit;
+            depth.point_a = sa;
+            total = margin - along;
+            depth.point_b = sa + along * c.unit;
+            depth.termination = c.termination;
         }
     }
     r.iterations = depth.iterations;

@@ -28,7 +28,8 @@ namespace kairos {
 // (relative); REPEATED_SUPPORT when the support point lies on the nearest face within rounding
 // (polytopes: exact); NEAR_CONTACT when C is flat (a segment crossing a segment, a triangle in a
 // triangle's plane: depth 0 of the cores); NO_PROGRESS when rounding leaves no valid expansion;
-// MAX_ITERATIONS (at most min(max(max_iterations, 16), 128) support calls). The last two return
+// MAX_ITERATIONS (at most min(max(max_iterations, 16), 128) support calls; the cores' GJK, for
+// rounded shapes, gets at least 16 too). The last two return
 // the nearest face found, whose depth is a lower bound, or, when the polytope never held the
 // origin, the smallest support value of C seen along a direction (an upper bound).
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,

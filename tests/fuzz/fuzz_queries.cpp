@@ -318,7 +318,9 @@ real check_signed_distance(const Posed& a, const Posed& b, const SettingsCase& s
         return kairos_signed_distance(a.shape->shape.get(), a.pose_arg(), b.shape->shape.get(), b.pose_arg(),
                                       s.use ? &s.settings : nullptr, &r);
     });
-    const char* what = "kairos_signed_distance";
+    char what[160];
+    std::snprintf(what, sizeof what, "kairos_signed_distance(tolerance %.3g, max_iterations %u)", double(s.tolerance),
+                  s.use ? s.settings.max_iterations : 256u);
     if (status != KAIROS_OK) {
         // Only inputs near the magnitude limits may fail (no finite result) where kairos_distance
         // succeeded.

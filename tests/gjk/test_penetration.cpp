@@ -348,4 +348,24 @@ TEST(Penetration, ABallOnANeedlesAxis) {
     EXPECT_EQ(j.overlapping, j.cases);
 }
 
+// A fuzz finding: a unit ball 1.46 from the axis of a unit cylinder 1e4 long gave depth 1 (the
+// ball's radius) for 0.54: the cores' GJK axis did not show their gap and the expansion, with the
+// cores apart, had nothing to enclose. Closed form: depth = 2 - rho for a ball whose centre is
+// rho from the axis, well inside the length; both orders, along the cylinder.
+TEST(Penetration, ABallBesideALongCylinder) {
+    Judge j;
+    CylinderShape cyl(1, 9414.9691004806591);
+    SphereShape ball(1);
+    for (double rho : {1.2, 1.4641, 1.7, 1.99})
+        for (double z : {0.0, 0.004, 100.0, -5000.0})
+            for (double angle : {0.0, 0.785398, 2.0}) {
+                const Vec3 centre{rho * std::cos(angle), rho * std::sin(angle), z};
+                check(cyl, pose({-4, -4, -4}, Quat{}), ball, pose(Vec3{-4, -4, -4} + centre, Quat{}), rho - 2, 1e4, 1e-12,
+                      "rho " + std::to_string(rho) + " z " + std::to_string(z), j);
+            }
+    std::printf("ball beside a long cylinder: %d signed distances, error median %.3g, max %.3g of 1e4\n", j.cases,
+                j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+}
+
 }  // namespace
