@@ -434,6 +434,12 @@ void BM_LibccdMprPenetration(benchmark::State& state) {
 }
 
 void BM_FclSignedDistance(benchmark::State& state) {
+    if (state.range(0) == CylinderCone) {
+        // libccd's EPA inside FCL fails an assertion on some of these pairs and aborts the process
+        // (seen in this benchmark; the stability catalogue counts its aborts in forked children).
+        state.SkipWithError("FCL aborts on overlapping cylinder/cone pairs (assertion in gjk_libccd-inl.h)");
+        return;
+    }
     const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
     // FCL's signed distance runs libccd's GJK and EPA (GST_LIBCCD); it may throw on degenerate
     // input (FCL issues 493, 495), counted as a failure.
