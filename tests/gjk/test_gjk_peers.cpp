@@ -27,6 +27,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "gjk/gjk.hpp"
+#include "gjk/penetration.hpp"
 #include "gjk_peer_fcl.hpp"
 #include "gjk_peer_shapes.hpp"
 
@@ -297,4 +298,73 @@ TEST(GjkPeers, FclGstIndepWrongOnHullPair) {
         1, [&](size_t) { return fcl_distance(p.a, p.b, fcl::GST_INDEP); }, crashes);
     std::printf("[hull pair 475] oracle %.15g kairos %.15g FCL GST_INDEP %s%.15g\n", static_cast<double>(o.distance),
                 r.distance, f[0].status == 1 ? "" : "(crashed) ", f[0].distance);
+}
+
+// Penetration depth of overlapping boxes and hulls: Kairos's signed distance against the oracle's
+// depth (the smallest overlap over face normals and edge cross products, long double), and the
+// peers beside it: FCL's signed distance (GST_LIBCCD, run in forked children: it can abort) and
+// libccd's MPR penetration. Kairos must agree with the oracle to 1e-9 of the size on every pair;
+// the peers' agreement is counted and printed (FCL must agree on most, or the conventions here
+// would be wrong).
+TEST(GjkPeers, PenetrationAgainstFclAndLibccd) {
+    const uint64_t seed = 4243;
+    std::mt19937_64 rng(seed);
+    struct Case {
+        Spec a, b;
+        double depth;
+    };
+    std::vector<Case> cases;
+    while (cases.size() < 240) {
+        Case c;
+        c.a = peer::random_spec(rng, cases.size() % 2 ? Kind::Hull : Kind::Box);
+        c.b = peer::random_spec(rng, cases.size() % 3 ? Kind::Box : Kind::Hull);
+        peer::place_pair(rng, c.a, c.b);
+        const oracle::Result o =
+            oracle::distance(gjk_test::world_polytope(c.a.verts, c.a.pose), gjk_test::world_polytope(c.b.verts, c.b.pose));
+        if (!o.intersecting) continue;
+        c.depth = double(o.depth);
+        cases.push_back(std::move(c));
+    }
+    int kairos_off = 0;
+    double worst = 0;
+    for (const Case& c : cases) {
+        const auto ka = peer::make_kairos(c.a), kb = peer::make_kairos(c.b);
+        const DistanceResult r = signed_distance(*ka, c.a.pose, *kb, c.b.pose, kTol, 256);
+        const double err = std::fabs(-r.distance - c.depth) / peer::extent(c.a);
+        worst = std::max(worst, err);
+        if (!(err <= 1e-9) && ++kairos_off <= 5)
+            ADD_FAILURE() << "Kairos depth " << -r.distance << " against " << c.depth << " (seed " << seed << ")";
+    }
+    int fcl_crashes = 0;
+    const std::vector<PeerOut> fcl = run_forked(cases.size(), [&](size_t i) {
+        fcl::CollisionObjectd oa(fcl_geometry(cases[i].a), fcl_transform(cases[i].a.pose));
+        fcl::CollisionObjectd ob(fcl_geometry(cases[i].b), fcl_transform(cases[i].b.pose));
+        fcl::DistanceRequestd req;
+        req.enable_nearest_points = true;
+        req.enable_signed_distance = true;
+        req.gjk_solver_type = fcl::GST_LIBCCD;
+        fcl::DistanceResultd res;
+        fcl::distance(&oa, &ob, req, res);
+        PeerOut o{};
+        o.distance = res.min_distance;
+        return o;
+    }, fcl_crashes);
+    ASSERT_EQ(fcl.size(), cases.size());
+    ccd_t ccd = ccd_setup();
+    ccd.mpr_tolerance = 1e-12;
+    int fcl_agree = 0, mpr_agree = 0;
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const double size = peer::extent(cases[i].a);
+        if (fcl[i].status == 1 && std::fabs(-fcl[i].distance - cases[i].depth) <= 1e-6 * size) ++fcl_agree;
+        ccd_real_t depth = 0;
+        ccd_vec3_t dir, pos;
+        if (ccdMPRPenetration(&cases[i].a, &cases[i].b, &ccd, &depth, &dir, &pos) == 0 &&
+            std::fabs(double(depth) - cases[i].depth) <= 1e-6 * size)
+            ++mpr_agree;
+    }
+    std::printf("penetration, %zu overlapping box/hull pairs: Kairos worst %.3g of the size; FCL signed distance "
+                "agrees (1e-6) on %d, aborted on %d; libccd MPR agrees on %d\n",
+                cases.size(), worst, fcl_agree, fcl_crashes, mpr_agree);
+    EXPECT_EQ(kairos_off, 0);
+    EXPECT_GT(fcl_agree, int(cases.size()) / 2) << "seed " << seed;
 }
