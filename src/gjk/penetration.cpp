@@ -226,7 +226,12 @@ private:
             }
         }
         if (!(across(far) > thin())) {  // C is a segment: the normal across it nearest the hint
-            out.n = normalized_or(hint_ - dot(hint_, eu) * eu, p);
+            // Orthogonalised twice (one pass leaves rounding along eu), and only a hint well off
+            // the segment's line counts: a hint along it leaves rounding noise, whose direction is
+            // anything (a ball centred on a capsule's segment got an axis along the capsule).
+            Vec3 off = hint_ - dot(hint_, eu) * eu;
+            off = off - dot(off, eu) * eu;
+            out.n = length(off) > 1e-6 * length(hint_) ? normalized_or(off, p) : p;
             flat_ = 1;
             return Termination::NearContact;
         }

@@ -309,6 +309,20 @@ TEST(Penetration, FlatCoreDifferences) {
     const DistanceResult r = signed_distance(a, pose({5, 5, 5}, Quat{}), s, pose({5, 5, 5.5}, Quat{}), 1e-12, 256);
     EXPECT_NEAR(r.distance, -0.7, 1e-12);
     EXPECT_NEAR(r.axis.z, 0, 1e-12);
+    // CI's fuzz finding: a ball centred on a long capsule's segment, the ball's frame turned (its
+    // centre offset lies along the segment): the axis must be across the capsule, both orders.
+    {
+        CapsuleShape cap(1, 78.841382467383838);
+        SphereShape ball(1);
+        const Quat turned = normalized(Quat{0.66666779695883582, 0.33332881213016208, 0.66666779695883582, 0});
+        const Transform xb = pose({-4, -4, -3.4999923704890517}, turned), xc = pose({-4, -4, -4}, Quat{});
+        for (int order = 0; order < 2; ++order) {
+            const DistanceResult q = order ? signed_distance(cap, xc, ball, xb, 1e-10, 256)
+                                           : signed_distance(ball, xb, cap, xc, 1e-10, 256);
+            EXPECT_NEAR(q.distance, -2, 1e-12) << "order " << order;
+            EXPECT_NEAR(q.axis.z, 0, 1e-9) << "order " << order;
+        }
+    }
     const ShapePtr t1 = hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), t2 = hull({{0.2, 0.2, 0}, {1.2, 0.2, 0}, {0.2, 1.2, 0}});
     for (int order = 0; order < 2; ++order) {
         const DistanceResult f = order ? signed_distance(*t2, pose({}, Quat{}), *t1, pose({}, Quat{}), 1e-12, 256)
