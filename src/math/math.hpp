@@ -42,7 +42,11 @@ inline Vec3 cwise_max(Vec3 a, Vec3 b) { return {std::fmax(a.x, b.x), std::fmax(a
 // Unit vector along a, computed without overflow or underflow (scaled by the largest component
 // first). A zero vector gives `fallback`.
 inline Vec3 normalized_or(Vec3 a, Vec3 fallback) {
-    const double m = max_abs(a);
+    // Plain comparisons, not max_abs's std::fmax (a library call; curved supports normalise on
+    // every call). A NaN component gives NaN or the fallback, never a number.
+    const double ax = std::fabs(a.x), ay = std::fabs(a.y), az = std::fabs(a.z);
+    const double mxy = ax > ay ? ax : ay;
+    const double m = az > mxy ? az : mxy;
     if (!(m > 0)) return fallback;  // also catches NaN
     const Vec3 s = a / m;
     return s / length(s);
