@@ -379,11 +379,17 @@ private:
             // cylinder's cap and the cap's centre between them: collinear, coordinates summing to
             // 0.5, a hit point 2.5 from the ray point; found by fuzzing) give way to the nearest
             // sub-simplex whose coordinates do, as the distance's witness points do.
-            Simplex sx = sx_;
-            if (gjk_detail::kBitCount[sx.bits] >= 2 && !sx.coordinates_reproduce_v(0x1p-60))
-                sx.nearest_in_hull(sx.bits, INFINITY, 0x1p-60);
-            sx.closest_points(out.point_a, out.point_b);
-            out.size = std::sqrt(sx.max_norm_sq());
+            // (A point's coordinate is 1 and an edge's reproduce its projection: only triangles and
+            // tetrahedra need the test, and only a failed one needs a copy to change.)
+            const Simplex* sx = &sx_;
+            Simplex nearer;
+            if (gjk_detail::kBitCount[sx_.bits] >= 3 && !sx_.coordinates_reproduce_v(0x1p-60)) {
+                nearer = sx_;
+                nearer.nearest_in_hull(nearer.bits, INFINITY, 0x1p-60);
+                sx = &nearer;
+            }
+            sx->closest_points(out.point_a, out.point_b);
+            out.size = std::sqrt(sx->max_norm_sq());
         }
         if (sup_.scale != 1) {
             const double inv = 1 / sup_.scale;  // exact: a power of two within 2^+-1000

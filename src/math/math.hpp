@@ -34,16 +34,20 @@ constexpr double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z;
 constexpr Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 constexpr double length_sq(Vec3 a) { return dot(a, a); }
 inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
-inline double max_abs(Vec3 a) { return std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z))); }
+// std::fmax and std::fmin's results (a NaN argument is ignored; NaN only when both are) by
+// comparisons: the library functions are calls here (no -ffinite-math-only), on hot paths.
+inline double max_of(double a, double b) { return (a >= b || std::isnan(b)) ? a : b; }
+inline double min_of(double a, double b) { return (a <= b || std::isnan(b)) ? a : b; }
+inline double max_abs(Vec3 a) { return max_of(std::fabs(a.x), max_of(std::fabs(a.y), std::fabs(a.z))); }
 inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
-inline Vec3 cwise_min(Vec3 a, Vec3 b) { return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)}; }
-inline Vec3 cwise_max(Vec3 a, Vec3 b) { return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)}; }
+inline Vec3 cwise_min(Vec3 a, Vec3 b) { return {min_of(a.x, b.x), min_of(a.y, b.y), min_of(a.z, b.z)}; }
+inline Vec3 cwise_max(Vec3 a, Vec3 b) { return {max_of(a.x, b.x), max_of(a.y, b.y), max_of(a.z, b.z)}; }
 
 // Unit vector along a, computed without overflow or underflow (scaled by the largest component
 // first). A zero vector gives `fallback`.
 inline Vec3 normalized_or(Vec3 a, Vec3 fallback) {
-    // Plain comparisons, not max_abs's std::fmax (a library call; curved supports normalise on
-    // every call). A NaN component gives NaN or the fallback, never a number.
+    // Plain comparisons, not max_abs (curved supports normalise on every call): a NaN component
+    // gives NaN or the fallback, never a number.
     const double ax = std::fabs(a.x), ay = std::fabs(a.y), az = std::fabs(a.z);
     const double mxy = ax > ay ? ax : ay;
     const double m = az > mxy ? az : mxy;
