@@ -18,6 +18,9 @@ using namespace kernels;
 constexpr double kEps = 2.220446049250313e-16;
 constexpr int kMaxVertices = 4 + 128;
 constexpr int kMaxFaces = 2 * kMaxVertices;
+// The horizon's hash set: a power of two at least twice the edges of every face.
+constexpr int kEdgeTable = 2048;
+static_assert(kEdgeTable >= 2 * 3 * kMaxFaces && kMaxVertices <= 256);
 
 struct Vertex {
     Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)
@@ -33,6 +36,11 @@ struct Face {
     double l[3];    // the triangle's nearest point to the origin as a combination of the corners
     bool edge;      // that point is on an edge (the origin's projection falls outside)
     bool resolved;  // d, l and edge are known (see resolve); until then d is the plane's offset
+};
+
+struct Plane {
+    Vec3 n;
+    double off;
 };
 
 // Fixed storage whose slots start uninitialised: Vec3 zeroes itself, and zeroing the polytope's
@@ -71,13 +79,27 @@ public:
         if (out.termination != Termination::None) return finish(out);
         double upper = INFINITY;  // smallest support value of C along a unit direction (upper_n_)
         for (;;) {
-            int f;
+            // The least key among the faces; resolving raises a key, so after a resolve the face
+            // is still the least when its key stays at or below the runner-up's, and the
+            // runner-up is the least otherwise (a full scan only when that one is unresolved).
+            int f = -1;
             for (;;) {
+                int second = -1;
                 f = 0;
-                for (int i = 1; i < nf_; ++i)
-                    if (faces_[i].d < faces_[f].d) f = i;
+                for (int i = 1; i < nf_; ++i) {
+                    if (key_[i] < key_[f]) {
+                        second = f;
+                        f = i;
+                    } else if (second < 0 || key_[i] < key_[second]) {
+                        second = i;
+                    }
+                }
                 if (faces_[f].resolved) break;
                 resolve(faces_[f]);
+                key_[f] = faces_[f].d;
+                if (second < 0 || key_[f] <= key_[second]) break;
+                f = second;
+                if (faces_[f].resolved) break;
             }
             const Face face = faces_[f];
             if (calls_ >= budget_ || nv_ == kMaxVertices) return finish(face, Termination::MaxIterations, out);
@@ -265,7 +287,7 @@ private:
                 flat_ = 2;
                 return Termination::NoProgress;
             }
-            faces_[nf_++] = f;
+            put(nf_++, f);
         }
         interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
         return Termination::None;
@@ -284,29 +306,41 @@ private:
         return false;
     }
     bool expand(const Vertex& x, double margin) {
-        bool visible[kMaxFaces];
+        int vis[kMaxFaces];  // the faces that see x, in index order
         int n_visible = 0;
-        for (int i = 0; i < nf_; ++i) {
-            visible[i] = dot(faces_[i].n, x.w) - faces_[i].off > margin;
-            n_visible += visible[i];
-        }
+        for (int i = 0; i < nf_; ++i)
+            if (dot(plane_[i].n, x.w) - plane_[i].off > margin) vis[n_visible++] = i;
         if (n_visible == 0) return false;
-        // Horizon: the directed edges of visible faces whose reverse is not on a visible face
-        // (the visible set is small: a pairwise search over its edges).
-        int ea[3 * kMaxFaces], eb[3 * kMaxFaces];
-        int ne = 0;
-        for (int i = 0; i < nf_; ++i) {
-            if (!visible[i]) continue;
-            for (int k = 0; k < 3; ++k) ea[ne] = faces_[i].v[k], eb[ne] = faces_[i].v[(k + 1) % 3], ++ne;
+        // Horizon: the directed edges of visible faces whose reverse is not on a visible face,
+        // found through a hash set of those edges (open addressing, keys from < 256 vertices).
+        const int ne = 3 * n_visible;
+        int cap = 16, bits = 4;
+        while (cap < 2 * ne) cap *= 2, ++bits;
+        uint32_t table[kEdgeTable];
+        constexpr uint32_t kEmpty = ~0u;
+        for (int i = 0; i < cap; ++i) table[i] = kEmpty;
+        auto slot_of = [&](uint32_t key) {
+            uint32_t h = (key * 2654435761u) >> (32 - bits);  // Knuth's multiplicative hash: high bits
+            while (table[h] != kEmpty && table[h] != key) h = (h + 1) & uint32_t(cap - 1);
+            return h;
+        };
+        for (int i = 0; i < n_visible; ++i) {
+            const Face& f = faces_[vis[i]];
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t key = uint32_t(f.v[k]) << 8 | f.v[(k + 1) % 3];
+                table[slot_of(key)] = key;
+            }
         }
         int from[kMaxVertices], to[kMaxVertices];
         int nh = 0;
-        for (int i = 0; i < ne; ++i) {
-            bool shared = false;
-            for (int j = 0; j < ne && !shared; ++j) shared = ea[j] == eb[i] && eb[j] == ea[i];
-            if (shared) continue;
-            if (nh == kMaxVertices) return false;
-            from[nh] = ea[i], to[nh] = eb[i], ++nh;
+        for (int i = 0; i < n_visible; ++i) {
+            const Face& f = faces_[vis[i]];
+            for (int k = 0; k < 3; ++k) {
+                const int a = f.v[k], b = f.v[(k + 1) % 3];
+                if (table[slot_of(uint32_t(b) << 8 | uint32_t(a))] != kEmpty) continue;  // shared
+                if (nh == kMaxVertices) return false;
+                from[nh] = a, to[nh] = b, ++nh;
+            }
         }
         // One cycle: every vertex starts at most one edge, and following them visits them all.
         if (nh < 3 || nf_ - n_visible + nh > kMaxFaces) return false;
@@ -331,12 +365,27 @@ private:
             if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
         }
         ++nv_;
-        int kept = 0;
-        for (int i = 0; i < nf_; ++i)
-            if (!visible[i]) faces_[kept++] = faces_[i];
-        for (int i = 0; i < nh; ++i) faces_[kept++] = fresh[i];
-        nf_ = kept;
+        // The new faces take the visible ones' slots, then the end; slots left over are filled
+        // from the end, the highest first (the faces above it are then all kept ones).
+        int k = 0;
+        for (; k < nh && k < n_visible; ++k) put(vis[k], fresh[k]);
+        for (int i = k; i < nh; ++i) put(nf_++, fresh[i]);
+        for (int h = n_visible - 1; h >= k; --h) {
+            --nf_;
+            if (vis[h] != nf_) move(nf_, vis[h]);
+        }
         return true;
+    }
+
+    void put(int i, const Face& f) {
+        faces_[i] = f;
+        key_[i] = f.d;
+        plane_[i] = {f.n, f.off};
+    }
+    void move(int from, int to) {
+        faces_[to] = faces_[from];
+        key_[to] = key_[from];
+        plane_[to] = plane_[from];
     }
 
     // The nearest face's nearest point to the origin, as a combination of its corners.
@@ -390,7 +439,11 @@ private:
     Vec3 upper_n_;
     Vertex upper_x_;
     Slots<Vertex, kMaxVertices> verts_;
+    // Face i, its ranking distance (faces_[i].d) and its plane, kept apart so that the scans
+    // over every face read them contiguously.
     Slots<Face, kMaxFaces> faces_;
+    Slots<double, kMaxFaces> key_;
+    Slots<Plane, kMaxFaces> plane_;
     int nv_ = 0, nf_ = 0;
 };
 
