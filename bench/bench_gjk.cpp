@@ -380,6 +380,17 @@ void depth_errors(benchmark::State& state, const Overlap& o, Depth&& depth_of) {
     state.counters["failed"] = failed;
 }
 
+// A peer's depth query timed over the scenario's pairs in turn, then its errors (depth_errors).
+template <class Depth>
+void time_depths(benchmark::State& state, const Overlap& o, Depth&& depth_of) {
+    size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(depth_of(o.q[i]));
+        i = (i + 1) % o.q.size();
+    }
+    depth_errors(state, o, depth_of);
+}
+
 // tolerance: 10^-range(1) (the default 1e-10, and coarser ones to compare at a peer's accuracy).
 void BM_KairosSignedDistance(benchmark::State& state) {
     const Overlap& o = overlapping(static_cast<Scenario>(state.range(0)));
@@ -425,12 +436,7 @@ void BM_LibccdMprPenetration(benchmark::State& state) {
         ccd_vec3_t dir, pos;
         return ccdMPRPenetration(&x.a, &x.b, &c, &depth, &dir, &pos) == 0 ? double(depth) : NAN;
     };
-    size_t i = 0;
-    for (auto _ : state) {
-        benchmark::DoNotOptimize(depth_of(o.q[i]));
-        i = (i + 1) % o.q.size();
-    }
-    depth_errors(state, o, depth_of);
+    time_depths(state, o, depth_of);
 }
 
 void BM_FclSignedDistance(benchmark::State& state) {
@@ -457,12 +463,7 @@ void BM_FclSignedDistance(benchmark::State& state) {
         }
         return -res.min_distance;
     };
-    size_t i = 0;
-    for (auto _ : state) {
-        benchmark::DoNotOptimize(depth_of(o.q[i]));
-        i = (i + 1) % o.q.size();
-    }
-    depth_errors(state, o, depth_of);
+    time_depths(state, o, depth_of);
 }
 
 void BM_BulletF64Epa(benchmark::State& state) {
@@ -479,12 +480,7 @@ void BM_BulletF64Epa(benchmark::State& state) {
         detector.getClosestPoints(in, out, nullptr);
         return out.m_hasResult ? -double(out.m_distance) : double(NAN);
     };
-    size_t i = 0;
-    for (auto _ : state) {
-        benchmark::DoNotOptimize(depth_of(o.q[i]));
-        i = (i + 1) % o.q.size();
-    }
-    depth_errors(state, o, depth_of);
+    time_depths(state, o, depth_of);
 }
 
 void overlap_scenarios(benchmark::internal::Benchmark* b) {

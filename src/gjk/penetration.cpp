@@ -472,11 +472,12 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     // whose faces along the needle give the axis.
     bool apart = false, axis_shows_gap = false;
     double along = 0;  // the cores' separation along their axis: a lower bound of their gap
+    Vec3 along_a;      // A's core's support point along the axis (A's frame)
     if (!c.overlap && dot(c.unit, c.unit) > 0) {
         apart = true;
         along = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-            Vec3 pa, pb;
-            return -dot(c.unit, pair(c.unit, pa, pb));
+            Vec3 pb;
+            return -dot(c.unit, pair(c.unit, along_a, pb));
         });
         const double scale = max_abs(c.center_offset) + max_abs(c.point_a) + max_abs(c.point_b);
         axis_shows_gap = c.distance - along <= 0x1p-30 * scale;
@@ -494,12 +495,6 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     } else {
         // The tetrahedron alone takes 6 to 12 support calls.
         const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
-        // The cores' support value along an axis (their overlap along it; < 0: a gap), and the
-        // support points that give it.
-        Vec3 sa, sb;
-        auto overlap_along = [&](Vec3 n) {
-            return with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) { return dot(n, pair(n, sa, sb)); });
-        };
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget).run(tolerance);
         });
@@ -514,11 +509,10 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
             // could not: the radii less that gap, along it, an upper bound of the depth that the
             // axis itself gives (a ball 0.46 off a cylinder 1e4 long; found by fuzzing). The
             // deepest points: A's core's support point along it, and B's the depth behind.
-            overlap_along(c.unit);
             depth.n = c.unit;
-            depth.point_a = sa;
+            depth.point_a = along_a;
             total = margin - along;
-            depth.point_b = sa + along * c.unit;
+            depth.point_b = along_a + along * c.unit;
             depth.termination = c.termination;
         }
     }

@@ -19,6 +19,18 @@ kairos_pose at(double x, double y, double z) {
     return p;
 }
 
+// The broad phases a user can select.
+constexpr int32_t kEveryBroadPhase[] = {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
+                                        KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED};
+
+// A world with default settings but the broad phase.
+void create_world(int32_t broad_phase, kairos_world** out) {
+    kairos_world_settings s;
+    kairos_world_settings_init(&s);
+    s.broad_phase = broad_phase;
+    ASSERT_EQ(kairos_world_create(&s, out), KAIROS_OK);
+}
+
 struct WorldFixture : ::testing::Test {
     void SetUp() override {
         ASSERT_EQ(kairos_shape_sphere(0.1, &bullet), KAIROS_OK);
@@ -40,14 +52,10 @@ struct WorldFixture : ::testing::Test {
 // overlap by 0.2 along x, 1 along y and z), in every broad phase; kairos_signed_distance gives
 // the depth at the same poses.
 TEST_F(WorldFixture, OverlapAtTheStartGivesTheMinimumTranslation) {
-    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
-                       KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+    for (int32_t bp : kEveryBroadPhase) {
         SCOPED_TRACE(bp);
-        kairos_world_settings s;
-        kairos_world_settings_init(&s);
-        s.broad_phase = bp;
         kairos_world* w = nullptr;
-        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &w));
         kairos_object_id a = 0, b = 0;
         kairos_pose pa = at(0, 0, 0), pb = at(0.8, 0, 0);
         ASSERT_EQ(kairos_world_add(w, cube, &pa, 1, &a), KAIROS_OK);
@@ -71,14 +79,10 @@ TEST_F(WorldFixture, OverlapAtTheStartGivesTheMinimumTranslation) {
 }
 
 TEST_F(WorldFixture, BulletThroughAWallInEveryBroadPhase) {
-    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
-                       KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+    for (int32_t bp : kEveryBroadPhase) {
         SCOPED_TRACE(bp);
-        kairos_world_settings s;
-        kairos_world_settings_init(&s);
-        s.broad_phase = bp;
         kairos_world* w = nullptr;
-        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &w));
         kairos_object_id wall_id = 0, bullet_id = 0, far_id = 0;
         kairos_pose p = at(0, 0, 0);
         ASSERT_EQ(kairos_world_add(w, wall, &p, 11, &wall_id), KAIROS_OK);
@@ -215,14 +219,10 @@ TEST_F(WorldFixture, MoveBackToTheLastSweptBoxIsSafeAndFindsThePair) {
                             {0.46882472323217533, 0.5836181428458358, 0.46882472323217533, 0.46882472323217533}};
     const kairos_pose second{{17.023437857633326, 17.421881437399861, 17},
                              {0.1435354361485609, -3.7194982158217247e-05, -0.8125243852462587, 0.56497938065593589}};
-    for (int32_t bp : {KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_ENCAPSULATING_SAP,
-                       KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
+    for (int32_t bp : kEveryBroadPhase) {
         SCOPED_TRACE(bp);
-        kairos_world_settings s;
-        kairos_world_settings_init(&s);
-        s.broad_phase = bp;
         kairos_world* w = nullptr;
-        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &w));
         kairos_object_id a = 0, b = 0;
         kairos_pose p = at(-3, -3, -2.9296864271000227);
         ASSERT_EQ(kairos_world_add(w, box, &p, 1, &a), KAIROS_OK);
@@ -264,11 +264,8 @@ TEST_F(WorldFixture, ShuttlingObjectsMatchBruteForce) {
     std::vector<std::vector<kairos_object_id>> ids(3);
     for (int32_t bp :
          {KAIROS_BROAD_PHASE_BRUTE_FORCE, KAIROS_BROAD_PHASE_SPACETIME_SAP, KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED}) {
-        kairos_world_settings s;
-        kairos_world_settings_init(&s);
-        s.broad_phase = bp;
         kairos_world* w = nullptr;
-        ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &w));
         for (int i = 0; i < kObjects; ++i) {
             kairos_object_id id = 0;
             ASSERT_EQ(kairos_world_add(w, i % 2 ? cube : bullet, &from[i], 0, &id), KAIROS_OK);

@@ -197,17 +197,7 @@ TEST(Penetration, RandomPolytopesAgainstTheOracle) {
         const ShapePtr a = hull(va), b = hull(vb);
         const Transform xa = pose({u(rng), u(rng), u(rng)}, random_quat(rng));
         const Transform xb = pose(xa.translation + 0.9 * random_unit(rng), random_quat(rng));
-        double ra[9], rb[9], ta[3] = {xa.translation.x, xa.translation.y, xa.translation.z},
-                             tb[3] = {xb.translation.x, xb.translation.y, xb.translation.z};
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) {
-                const Vec3& row_a = xa.rotation.r[r];
-                const Vec3& row_b = xb.rotation.r[r];
-                ra[3 * r + c] = c == 0 ? row_a.x : (c == 1 ? row_a.y : row_a.z);
-                rb[3 * r + c] = c == 0 ? row_b.x : (c == 1 ? row_b.y : row_b.z);
-            }
-        const oracle::Result o =
-            oracle::distance(oracle::make_polytope(oracle::transform(va, ra, ta)), oracle::make_polytope(oracle::transform(vb, rb, tb)));
+        const oracle::Result o = oracle::distance(gjk_test::world_polytope(va, xa), gjk_test::world_polytope(vb, xb));
         const double truth = o.intersecting ? -double(o.depth) : double(o.distance);
         check(*a, xa, *b, xb, truth, 1.0, 1e-9, "hulls seed " + std::to_string(seed) + " case " + std::to_string(i), j);
     }
