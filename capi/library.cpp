@@ -84,6 +84,10 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         kairos_world_step_stats,
         kairos_shape_triangle,
         kairos_signed_distance,
+        kairos_world_set_filter,
+        kairos_world_set_static,
+        kairos_world_get_pose,
+        kairos_world_get_user_data,
     };
     const char* const fn = __func__;
     return kairos::capi::guarded(fn, [&] {

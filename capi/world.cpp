@@ -103,9 +103,55 @@ KAIROS_API int32_t kairos_world_move(kairos_world* w, kairos_object_id id, const
     const char* const fn = __func__;
     return guarded(fn, [&] {
         require_pointer(w, fn, "w");
-        live_object(w, id, fn);
+        const World::Object& o = live_object(w, id, fn);
         require_pointer(end, fn, "end");
-        w->core.move(id, state_of(read_pose(end, fn, "end")));
+        const BodyPose p = read_pose(end, fn, "end");
+        if (o.is_static)
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "id %llu is static (kairos_world_set_static): it never moves",
+                 static_cast<unsigned long long>(id));
+        w->core.move(id, state_of(p));
+    });
+}
+
+KAIROS_API int32_t kairos_world_set_filter(kairos_world* w, kairos_object_id id, const kairos_filter* f) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        live_object(w, id, fn);
+        require_pointer(f, fn, "f");
+        w->core.set_filter(id, Filter{f->category_bits, f->mask_bits, f->group});
+    });
+}
+
+KAIROS_API int32_t kairos_world_set_static(kairos_world* w, kairos_object_id id, int32_t is_static) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        live_object(w, id, fn);
+        if (is_static != 0 && is_static != 1)
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "is_static is %d; give 0 or 1", is_static);
+        w->core.set_static(id, is_static == 1);
+    });
+}
+
+KAIROS_API int32_t kairos_world_get_pose(const kairos_world* w, kairos_object_id id, kairos_pose* out) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        const World::Object& o = live_object(w, id, fn);
+        require_pointer(out, fn, "out");
+        out->position = to_c(o.pose.position);
+        out->orientation = {o.pose.orientation.x, o.pose.orientation.y, o.pose.orientation.z, o.pose.orientation.w};
+    });
+}
+
+KAIROS_API int32_t kairos_world_get_user_data(const kairos_world* w, kairos_object_id id, uint64_t* out) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        const World::Object& o = live_object(w, id, fn);
+        require_pointer(out, fn, "out");
+        *out = o.user_data;
     });
 }
 

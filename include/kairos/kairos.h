@@ -390,6 +390,30 @@ KAIROS_API void kairos_step_stats_init(kairos_step_stats* s);
 /* Counters of the last step; writes at most out->struct_size bytes. */
 KAIROS_API int32_t kairos_world_step_stats(const kairos_world* w, kairos_step_stats* out);
 
+/* Which pairs collide (frozen layout). Two objects of the same non-zero group always collide when
+ * the group is > 0 and never when it is < 0; otherwise a pair collides when
+ * (a.category_bits & b.mask_bits) != 0 and (b.category_bits & a.mask_bits) != 0. Every object
+ * starts with the default: category_bits 1, mask_bits 0xFFFFFFFF (all), group 0. */
+typedef struct kairos_filter {
+    uint32_t category_bits;
+    uint32_t mask_bits;
+    int32_t  group;
+} kairos_filter;
+
+/* Sets the object's filter (*f copied). A pair it rejects never reaches the narrow phase, the
+ * contacts or the overlaps, from the next step on. */
+KAIROS_API int32_t kairos_world_set_filter(kairos_world* w, kairos_object_id id, const kairos_filter* f);
+/* is_static 1: the object never moves in a step (kairos_world_move on it is
+ * KAIROS_ERROR_INVALID_ARGUMENT; a pending move is cancelled; kairos_world_set_pose still places
+ * it), and a pair of two static objects is never tested or reported. 0: an ordinary object again.
+ * Other values: KAIROS_ERROR_INVALID_ARGUMENT. */
+KAIROS_API int32_t kairos_world_set_static(kairos_world* w, kairos_object_id id, int32_t is_static);
+/* The object's pose now (the start of the next step; after a step, the end pose it was moved to),
+ * world frame, with the unit quaternion the world keeps. */
+KAIROS_API int32_t kairos_world_get_pose(const kairos_world* w, kairos_object_id id, kairos_pose* out);
+/* The user data given to kairos_world_add. */
+KAIROS_API int32_t kairos_world_get_user_data(const kairos_world* w, kairos_object_id id, uint64_t* out);
+
 /* ---------------------------------------------------------------------------------------------
  * Function table for dlopen users: dlsym only "kairos_get_api", then call through the table.
  * The table begins with struct_size and abi_version; function pointers are only ever appended,
@@ -444,6 +468,10 @@ typedef struct kairos_api {
     int32_t (*shape_triangle)(kairos_vec3, kairos_vec3, kairos_vec3, kairos_shape**);
     int32_t (*signed_distance)(const kairos_shape*, const kairos_pose*, const kairos_shape*, const kairos_pose*,
                                const kairos_query_settings*, kairos_distance_result*);
+    int32_t (*world_set_filter)(kairos_world*, kairos_object_id, const kairos_filter*);
+    int32_t (*world_set_static)(kairos_world*, kairos_object_id, int32_t);
+    int32_t (*world_get_pose)(const kairos_world*, kairos_object_id, kairos_pose*);
+    int32_t (*world_get_user_data)(const kairos_world*, kairos_object_id, uint64_t*);
 } kairos_api;
 
 /* The function table for abi_version (1 <= abi_version <= KAIROS_ABI_VERSION of the library).

@@ -134,10 +134,28 @@ bool World::set_pose(uint64_t id, const Pose& pose) {
 
 bool World::move(uint64_t id, const Pose& end) {
     Object* o = find_mutable(id);
-    if (o == nullptr) return false;
+    if (o == nullptr || o->is_static) return false;
     if (!o->moving) moved_.push_back(index_of(id));  // may throw; nothing has changed yet
     o->end = end;
     o->moving = true;
+    return true;
+}
+
+bool World::set_static(uint64_t id, bool is_static) {
+    Object* o = find_mutable(id);
+    if (o == nullptr) return false;
+    o->is_static = is_static;
+    if (is_static && o->moving) {  // its slot may stay in moved_: the step skips still objects
+        o->end = o->pose;
+        o->moving = false;
+    }
+    return true;
+}
+
+bool World::set_filter(uint64_t id, const Filter& filter) {
+    Object* o = find_mutable(id);
+    if (o == nullptr) return false;
+    o->filter = filter;
     return true;
 }
 
@@ -299,6 +317,10 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
     Sweep still_a, still_b;
     std::size_t cursor = 0;  // into axes_, sorted by key like bp_pairs
     for (const BroadPhasePair& p : bp_pairs) {
+        if (!pair_wanted(p.a, p.b)) {
+            ++counters_.filtered_pairs;
+            continue;
+        }
         uint32_t ia = p.a, ib = p.b;
         uint64_t id_a = make_id(ia, objects_[ia].generation), id_b = make_id(ib, objects_[ib].generation);
         if (id_b < id_a) {

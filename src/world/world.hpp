@@ -40,7 +40,21 @@ struct StepCounters {
     uint64_t axis_rejections = 0;   // pairs a cached separating axis ruled out without a cast
     uint64_t false_positives = 0;   // broad-phase pairs whose boxes never overlap (encapsulating)
     uint64_t contacts = 0;
+    uint64_t filtered_pairs = 0;  // broad-phase pairs a filter or two static objects rule out
 };
+
+// Which pairs collide (as Box2D's filter): two objects of the same non-zero group always collide
+// when the group is > 0 and never when it is < 0; otherwise a pair collides when each one's
+// category has a bit in the other's mask.
+struct Filter {
+    uint32_t category_bits = 1;
+    uint32_t mask_bits = 0xffffffffu;
+    int32_t group = 0;
+};
+inline bool filters_collide(const Filter& a, const Filter& b) {
+    if (a.group != 0 && a.group == b.group) return a.group > 0;
+    return (a.category_bits & b.mask_bits) != 0 && (b.category_bits & a.mask_bits) != 0;
+}
 
 struct WorldSettings {
     BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
@@ -58,6 +72,8 @@ public:
                                        // the margin, or larger after a turn (`loose`)
         bool moving = false;
         bool loose = false;
+        bool is_static = false;  // never given a move; a pair of two static objects is never tested
+        Filter filter;
         uint64_t user_data = 0;
         uint32_t generation = 1;  // of the current or next occupant of the slot
         bool alive = false;
@@ -85,8 +101,21 @@ public:
     bool remove(uint64_t id);
     // Teleports at once, without a sweep, and cancels a pending move. False for a stale id.
     bool set_pose(uint64_t id, const Pose& pose);
-    // The pose at the end of the next step (that step only). False for a stale id.
+    // The pose at the end of the next step (that step only). False for a stale id or a static
+    // object (nothing changes).
     bool move(uint64_t id, const Pose& end);
+    // Static objects never move in a step (a pending move is cancelled); set_pose still places
+    // them. False for a stale id.
+    bool set_static(uint64_t id, bool is_static);
+    // Pairs the filter rejects never reach the narrow phase, the contacts or the pairs. False for
+    // a stale id.
+    bool set_filter(uint64_t id, const Filter& filter);
+    // Whether the pair of live objects in these slots is tested at all (filters, both static).
+    bool pair_wanted(uint32_t a, uint32_t b) const {
+        const Object& oa = objects_[a];
+        const Object& ob = objects_[b];
+        return !(oa.is_static && ob.is_static) && filters_collide(oa.filter, ob.filter);
+    }
 
     // Finds each pair's first contact in [0, 1], then moves every object to its end pose and
     // clears the pending moves. Fills contacts, pairs and counters.

@@ -46,7 +46,8 @@ static void use_table(const kairos_api* api) {
     CHECK(api->status_name != NULL && strcmp(api->status_name(KAIROS_OK), "KAIROS_OK") == 0);
     CHECK(api->world_step_stats != NULL); /* the last entry of ABI version 1 */
     CHECK(api->shape_triangle != NULL);
-    CHECK(api->signed_distance != NULL);  /* the last entry of ABI version 2 */
+    CHECK(api->signed_distance != NULL);
+    CHECK(api->world_get_user_data != NULL);  /* the last entry of ABI version 2 */
 
     half.x = 1.0;
     half.y = 2.0;

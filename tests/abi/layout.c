@@ -82,6 +82,11 @@ PIN_OFFSET(kairos_world_settings, query, 8);
 PIN_OFFSET(kairos_world_settings, query.tolerance, 16);
 PIN_OFFSET(kairos_world_settings, query.max_iterations, 24);
 
+PIN_SIZE(kairos_filter, 12);
+PIN_OFFSET(kairos_filter, category_bits, 0);
+PIN_OFFSET(kairos_filter, mask_bits, 4);
+PIN_OFFSET(kairos_filter, group, 8);
+
 PIN_SIZE(kairos_contact, 88);
 PIN_OFFSET(kairos_contact, a, 0);
 PIN_OFFSET(kairos_contact, b, 8);
@@ -146,8 +151,12 @@ PIN_API(world_step_stats, 35);
 /* ABI version 2 appends: */
 PIN_API(shape_triangle, 36);
 PIN_API(signed_distance, 37);
-/* The size of ABI version 2's table: 38 entries. A new ABI version appends and grows this. */
-PIN_SIZE(kairos_api, 8 + 8 * 38);
+PIN_API(world_set_filter, 38);
+PIN_API(world_set_static, 39);
+PIN_API(world_get_pose, 40);
+PIN_API(world_get_user_data, 41);
+/* The size of ABI version 2's table: 42 entries. A new ABI version appends and grows this. */
+PIN_SIZE(kairos_api, 8 + 8 * 42);
 PIN(KAIROS_ABI_VERSION == 2u);
 
 /* ---- Constants are ABI too: never renumbered -------------------------------------------------- */
@@ -199,6 +208,7 @@ static const kairos_api kairos_layout_table_types = {
     kairos_world_remove, kairos_world_set_pose, kairos_world_move, kairos_world_step,
     kairos_world_contacts, kairos_world_overlaps, kairos_step_stats_init, kairos_world_step_stats,
     kairos_shape_triangle, kairos_signed_distance,
+    kairos_world_set_filter, kairos_world_set_static, kairos_world_get_pose, kairos_world_get_user_data,
 };
 
 /* Referenced so that the table above is not an unused variable under -Wall. */

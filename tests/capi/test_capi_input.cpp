@@ -120,6 +120,8 @@ TEST(Library, GetApi) {
     EXPECT_EQ(api->distance, &kairos_distance);
     EXPECT_EQ(api->motion_cast, &kairos_motion_cast);
     EXPECT_EQ(api->world_step_stats, &kairos_world_step_stats);
+    EXPECT_EQ(api->world_set_filter, &kairos_world_set_filter);
+    EXPECT_EQ(api->world_get_user_data, &kairos_world_get_user_data);
     const size_t first = offsetof(kairos_api, status_name);
     const size_t n = (sizeof(kairos_api) - first) / sizeof(void (*)(void));
     for (size_t i = 0; i < n; ++i) {
@@ -515,5 +517,51 @@ TEST(WorldInput, StepStats) {
     ASSERT_EQ(kairos_world_step_stats(w, &full), KAIROS_OK);
     EXPECT_EQ(full.struct_size, sizeof full);
     EXPECT_EQ(full.broad_phase_pairs, 0u);
+    kairos_world_destroy(w);
+}
+
+// The filter, static and getter functions: each bad argument named, nothing changed or written.
+TEST(WorldInput, FiltersStaticAndGetters) {
+    kairos_world* w = nullptr;
+    ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
+    kairos_shape* ball = nullptr;
+    ASSERT_EQ(kairos_shape_sphere(0.5, &ball), KAIROS_OK);
+    kairos_pose p{};
+    p.orientation.w = 1;
+    kairos_object_id id = 0, gone = 0;
+    ASSERT_EQ(kairos_world_add(w, ball, &p, 5, &id), KAIROS_OK);
+    ASSERT_EQ(kairos_world_add(w, ball, &p, 6, &gone), KAIROS_OK);
+    ASSERT_EQ(kairos_world_remove(w, gone), KAIROS_OK);
+    const kairos_filter f{2, 0xffffffffu, 0};
+    EXPECT_TRUE(Rejected(kairos_world_set_filter(nullptr, id, &f), KAIROS_ERROR_NULL_ARGUMENT, "w"));
+    EXPECT_TRUE(Rejected(kairos_world_set_filter(w, gone, &f), KAIROS_ERROR_STALE_ID, "id"));
+    EXPECT_TRUE(Rejected(kairos_world_set_filter(w, 0, &f), KAIROS_ERROR_STALE_ID, "id"));
+    EXPECT_TRUE(Rejected(kairos_world_set_filter(w, id, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "f"));
+    EXPECT_TRUE(Rejected(kairos_world_set_static(nullptr, id, 1), KAIROS_ERROR_NULL_ARGUMENT, "w"));
+    EXPECT_TRUE(Rejected(kairos_world_set_static(w, gone, 1), KAIROS_ERROR_STALE_ID, "id"));
+    for (int32_t bad : {2, -1, 1 << 30})
+        EXPECT_TRUE(Rejected(kairos_world_set_static(w, id, bad), KAIROS_ERROR_INVALID_ARGUMENT, "is_static"));
+    // A refused set_static left the object ordinary: it still moves.
+    kairos_pose end = p;
+    end.position.x = 1;
+    EXPECT_EQ(kairos_world_move(w, id, &end), KAIROS_OK);
+    ASSERT_EQ(kairos_world_set_static(w, id, 1), KAIROS_OK);
+    EXPECT_TRUE(Rejected(kairos_world_move(w, id, &end), KAIROS_ERROR_INVALID_ARGUMENT, "static"));
+
+    kairos_pose out;
+    std::memset(&out, 0x3C, sizeof out);
+    const kairos_pose before = out;
+    uint64_t user = 99;
+    EXPECT_TRUE(Rejected(kairos_world_get_pose(nullptr, id, &out), KAIROS_ERROR_NULL_ARGUMENT, "w"));
+    EXPECT_TRUE(Rejected(kairos_world_get_pose(w, gone, &out), KAIROS_ERROR_STALE_ID, "id"));
+    EXPECT_TRUE(Rejected(kairos_world_get_pose(w, id, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+    EXPECT_TRUE(Rejected(kairos_world_get_user_data(nullptr, id, &user), KAIROS_ERROR_NULL_ARGUMENT, "w"));
+    EXPECT_TRUE(Rejected(kairos_world_get_user_data(w, gone, &user), KAIROS_ERROR_STALE_ID, "id"));
+    EXPECT_TRUE(Rejected(kairos_world_get_user_data(w, id, nullptr), KAIROS_ERROR_NULL_ARGUMENT, "out"));
+    EXPECT_EQ(std::memcmp(&out, &before, sizeof out), 0);
+    EXPECT_EQ(user, 99u);
+    ASSERT_EQ(kairos_world_get_user_data(w, id, &user), KAIROS_OK);
+    EXPECT_EQ(user, 5u);
+    kairos_shape_release(ball);
     kairos_world_destroy(w);
 }

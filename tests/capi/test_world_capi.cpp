@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -308,3 +311,209 @@ TEST_F(WorldFixture, ShuttlingObjectsMatchBruteForce) {
 }
 
 }  // namespace
+
+// The filter rule as C_API.md states it, written here independently of the library's.
+bool rule_collides(const kairos_filter& a, const kairos_filter& b) {
+    if (a.group != 0 && a.group == b.group) return a.group > 0;
+    return (a.category_bits & b.mask_bits) != 0 && (b.category_bits & a.mask_bits) != 0;
+}
+
+// A random scene run twice, in every broad phase: world F with random filters and some static
+// objects, world U with neither. F's contacts and overlaps must be exactly U's less the pairs the
+// rule rejects (two static objects, or the filters), bit for bit: a filter changes which pairs are
+// tested, never a pair's answer. Moves on static objects are refused in F (and not made in U).
+TEST_F(WorldFixture, FiltersAndStaticObjectsRemoveExactlyTheRejectedPairs) {
+    const uint64_t seed = 20261127;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    constexpr int kObjects = 90, kSteps = 6;
+    std::vector<kairos_pose> start(kObjects);
+    std::vector<kairos_filter> filters(kObjects);
+    std::vector<int> is_static(kObjects);
+    const int32_t groups[] = {0, 0, 0, 0, 1, -1, 2, -2};
+    for (int i = 0; i < kObjects; ++i) {
+        start[i] = at(4 * u(rng), 4 * u(rng), 4 * u(rng));
+        filters[i].category_bits = 1u << (rng() % 4);
+        filters[i].mask_bits = static_cast<uint32_t>(rng()) | (i % 3 == 0 ? 0xffffffffu : 0u);
+        filters[i].group = groups[rng() % 8];
+        is_static[i] = rng() % 4 == 0;
+    }
+    std::vector<std::vector<kairos_pose>> moves(kSteps, std::vector<kairos_pose>(kObjects));
+    for (auto& step : moves)
+        for (auto& p : step) {
+            p = at(4 * u(rng), 4 * u(rng), 4 * u(rng));
+            const double h = std::sqrt(0.5);
+            if (rng() % 3 == 0) p.orientation = {h, 0, 0, h};
+        }
+    int rejected_seen = 0, kept_seen = 0;
+    for (int32_t bp : kEveryBroadPhase) {
+        SCOPED_TRACE(bp);
+        kairos_world *f = nullptr, *plain = nullptr;
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &f));
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &plain));
+        std::vector<kairos_object_id> idf(kObjects), idu(kObjects);
+        for (int i = 0; i < kObjects; ++i) {
+            kairos_shape* s = i % 2 ? cube : bullet;
+            ASSERT_EQ(kairos_world_add(f, s, &start[i], static_cast<uint64_t>(i), &idf[i]), KAIROS_OK);
+            ASSERT_EQ(kairos_world_add(plain, s, &start[i], static_cast<uint64_t>(i), &idu[i]), KAIROS_OK);
+            ASSERT_EQ(kairos_world_set_filter(f, idf[i], &filters[i]), KAIROS_OK);
+            ASSERT_EQ(kairos_world_set_static(f, idf[i], is_static[i]), KAIROS_OK);
+        }
+        ASSERT_EQ(idf, idu);  // same slots in both worlds
+        auto index_of = [&](kairos_object_id id) {
+            return static_cast<int>(std::find(idf.begin(), idf.end(), id) - idf.begin());
+        };
+        auto wanted = [&](kairos_object_id a, kairos_object_id b) {
+            const int ia = index_of(a), ib = index_of(b);
+            return !(is_static[ia] && is_static[ib]) && rule_collides(filters[ia], filters[ib]);
+        };
+        for (int s = 0; s < kSteps; ++s) {
+            for (int i = 0; i < kObjects; ++i) {
+                if (i % 5 == 4) continue;  // some stay still
+                if (is_static[i]) {
+                    EXPECT_EQ(kairos_world_move(f, idf[i], &moves[s][i]), KAIROS_ERROR_INVALID_ARGUMENT);
+                    continue;
+                }
+                ASSERT_EQ(kairos_world_move(f, idf[i], &moves[s][i]), KAIROS_OK);
+                ASSERT_EQ(kairos_world_move(plain, idu[i], &moves[s][i]), KAIROS_OK);
+            }
+            ASSERT_EQ(kairos_world_step(f), KAIROS_OK);
+            ASSERT_EQ(kairos_world_step(plain), KAIROS_OK);
+            const kairos_contact *cf = nullptr, *cu = nullptr;
+            size_t nf = 0, nu = 0;
+            ASSERT_EQ(kairos_world_contacts(f, &cf, &nf), KAIROS_OK);
+            ASSERT_EQ(kairos_world_contacts(plain, &cu, &nu), KAIROS_OK);
+            std::vector<kairos_contact> expected;
+            for (size_t k = 0; k < nu; ++k) {
+                if (wanted(cu[k].a, cu[k].b)) {
+                    expected.push_back(cu[k]);
+                    ++kept_seen;
+                } else {
+                    ++rejected_seen;
+                }
+            }
+            ASSERT_EQ(nf, expected.size()) << "seed " << seed << " step " << s;
+            EXPECT_EQ(std::memcmp(cf, expected.data(), nf * sizeof(kairos_contact)), 0) << "seed " << seed;
+            auto of = overlap_pairs(f), ou = overlap_pairs(plain);
+            decltype(ou) expected_pairs;
+            for (const auto& p : ou)
+                if (wanted(p.first, p.second)) expected_pairs.push_back(p);
+            EXPECT_EQ(of, expected_pairs) << "seed " << seed << " step " << s;
+        }
+        // Static objects stayed where they were put.
+        for (int i = 0; i < kObjects; ++i) {
+            if (!is_static[i]) continue;
+            kairos_pose p;
+            ASSERT_EQ(kairos_world_get_pose(f, idf[i], &p), KAIROS_OK);
+            EXPECT_EQ(std::memcmp(&p.position, &start[i].position, sizeof p.position), 0) << i;
+        }
+        kairos_world_destroy(f);
+        kairos_world_destroy(plain);
+    }
+    // Both outcomes occur, in number (seed 20261127: hundreds of contacts per broad phase).
+    std::printf("contacts kept %d, rejected by the filter or as static pairs %d\n", kept_seen, rejected_seen);
+    EXPECT_GT(kept_seen, 40);
+    EXPECT_GT(rejected_seen, 40);
+}
+
+// Two static objects overlapping are never a contact or an overlap; a still ordinary object
+// overlapping a static one is, each step. A pending move is cancelled by set_static; set_pose
+// still places a static object; set_static(0) lets it move again.
+TEST_F(WorldFixture, StaticObjects) {
+    for (int32_t bp : kEveryBroadPhase) {
+        SCOPED_TRACE(bp);
+        kairos_world* w = nullptr;
+        ASSERT_NO_FATAL_FAILURE(create_world(bp, &w));
+        kairos_object_id s1 = 0, s2 = 0, d = 0;
+        kairos_pose p0 = at(0, 0, 0), p1 = at(0.5, 0, 0), p2 = at(20, 0, 0);
+        ASSERT_EQ(kairos_world_add(w, cube, &p0, 1, &s1), KAIROS_OK);
+        ASSERT_EQ(kairos_world_add(w, cube, &p1, 2, &s2), KAIROS_OK);
+        ASSERT_EQ(kairos_world_add(w, cube, &p2, 3, &d), KAIROS_OK);
+        ASSERT_EQ(kairos_world_set_static(w, s1, 1), KAIROS_OK);
+        const kairos_pose away = at(0.5, 9, 0);
+        ASSERT_EQ(kairos_world_move(w, s2, &away), KAIROS_OK);
+        ASSERT_EQ(kairos_world_set_static(w, s2, 1), KAIROS_OK);  // cancels the move
+        for (int step = 0; step < 2; ++step) {
+            ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+            const kairos_contact* c = nullptr;
+            size_t n = 9;
+            ASSERT_EQ(kairos_world_contacts(w, &c, &n), KAIROS_OK);
+            EXPECT_EQ(n, 0u);
+            EXPECT_TRUE(overlap_pairs(w).empty());
+        }
+        kairos_pose got;
+        ASSERT_EQ(kairos_world_get_pose(w, s2, &got), KAIROS_OK);
+        EXPECT_EQ(got.position.y, 0.0);  // the cancelled move did not happen
+        // An ordinary object placed over both: two contacts at toi 0, every step.
+        ASSERT_EQ(kairos_world_set_pose(w, d, &p1), KAIROS_OK);
+        for (int step = 0; step < 2; ++step) {
+            ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+            const kairos_contact* c = nullptr;
+            size_t n = 0;
+            ASSERT_EQ(kairos_world_contacts(w, &c, &n), KAIROS_OK);
+            ASSERT_EQ(n, 2u);
+            for (size_t k = 0; k < n; ++k) {
+                EXPECT_EQ(c[k].toi, 0.0);
+                EXPECT_TRUE(c[k].a == d || c[k].b == d);
+            }
+        }
+        // A static object refuses moves, keeps its pose, and takes set_pose; made ordinary, it moves.
+        EXPECT_EQ(kairos_world_move(w, s1, &p2), KAIROS_ERROR_INVALID_ARGUMENT);
+        const kairos_pose there = at(-30, 0, 0);
+        ASSERT_EQ(kairos_world_set_pose(w, s1, &there), KAIROS_OK);
+        ASSERT_EQ(kairos_world_get_pose(w, s1, &got), KAIROS_OK);
+        EXPECT_EQ(got.position.x, -30.0);
+        ASSERT_EQ(kairos_world_set_static(w, s1, 0), KAIROS_OK);
+        ASSERT_EQ(kairos_world_move(w, s1, &p0), KAIROS_OK);
+        ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+        ASSERT_EQ(kairos_world_get_pose(w, s1, &got), KAIROS_OK);
+        EXPECT_EQ(got.position.x, 0.0);
+        kairos_world_destroy(w);
+    }
+}
+
+// Getters: the pose now (the normalised quaternion the world keeps; after a step, the end pose)
+// and the user data; on error nothing is written.
+TEST_F(WorldFixture, GettersReturnThePoseNowAndTheUserData) {
+    kairos_world* w = nullptr;
+    ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
+    kairos_pose p = at(1, 2, 3);
+    kairos_object_id id = 0;
+    const double h = std::sqrt(0.5);
+    p.orientation = {0, 0, h, h};
+    ASSERT_EQ(kairos_world_add(w, cube, &p, 0xFEEDFACECAFEBEEFull, &id), KAIROS_OK);
+    kairos_pose got;
+    ASSERT_EQ(kairos_world_get_pose(w, id, &got), KAIROS_OK);
+    EXPECT_EQ(got.position.x, 1.0);
+    EXPECT_EQ(got.position.y, 2.0);
+    EXPECT_EQ(got.position.z, 3.0);
+    const double norm = std::sqrt(got.orientation.x * got.orientation.x + got.orientation.y * got.orientation.y +
+                                  got.orientation.z * got.orientation.z + got.orientation.w * got.orientation.w);
+    EXPECT_NEAR(norm, 1, 1e-15);
+    EXPECT_NEAR(got.orientation.z, h, 1e-15);
+    EXPECT_NEAR(got.orientation.w, h, 1e-15);
+    uint64_t user = 0;
+    ASSERT_EQ(kairos_world_get_user_data(w, id, &user), KAIROS_OK);
+    EXPECT_EQ(user, 0xFEEDFACECAFEBEEFull);
+    const kairos_pose end = at(-4, 5, 6.5);
+    ASSERT_EQ(kairos_world_move(w, id, &end), KAIROS_OK);
+    ASSERT_EQ(kairos_world_get_pose(w, id, &got), KAIROS_OK);
+    EXPECT_EQ(got.position.x, 1.0);  // a move takes effect in the step
+    ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+    ASSERT_EQ(kairos_world_get_pose(w, id, &got), KAIROS_OK);
+    EXPECT_EQ(got.position.x, -4.0);
+    EXPECT_EQ(got.position.y, 5.0);
+    EXPECT_EQ(got.position.z, 6.5);
+    EXPECT_EQ(got.orientation.w, 1.0);
+    // A stale id: an error, and nothing written.
+    ASSERT_EQ(kairos_world_remove(w, id), KAIROS_OK);
+    kairos_pose sentinel;
+    std::memset(&sentinel, 0x5A, sizeof sentinel);
+    kairos_pose out = sentinel;
+    user = 42;
+    EXPECT_EQ(kairos_world_get_pose(w, id, &out), KAIROS_ERROR_STALE_ID);
+    EXPECT_EQ(kairos_world_get_user_data(w, id, &user), KAIROS_ERROR_STALE_ID);
+    EXPECT_EQ(std::memcmp(&out, &sentinel, sizeof out), 0);
+    EXPECT_EQ(user, 42u);
+    kairos_world_destroy(w);
+}
