@@ -84,6 +84,8 @@ uint64_t World::add(const Shape& shape, const Pose& pose, uint64_t user_data) {
     o.box = box;
     o.moving = false;
     o.loose = false;
+    o.is_static = false;  // a reused slot's occupant starts ordinary, with the default filter
+    o.filter = Filter{};
     o.user_data = user_data;
     o.alive = true;
     ++live_;

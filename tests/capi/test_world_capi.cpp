@@ -517,3 +517,29 @@ TEST_F(WorldFixture, GettersReturnThePoseNowAndTheUserData) {
     EXPECT_EQ(user, 42u);
     kairos_world_destroy(w);
 }
+
+// Regression (fuzz_world, on the day filters came): an object added into the slot of a removed one
+// inherited its filter and static flag, so two overlapping balls went untested.
+TEST_F(WorldFixture, AReusedSlotStartsWithTheDefaultFilterAndNotStatic) {
+    kairos_world* w = nullptr;
+    ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
+    kairos_pose p = at(0, 0, 0), q = at(0.05, 0, 0);
+    kairos_object_id old_id = 0, a = 0, b = 0;
+    ASSERT_EQ(kairos_world_add(w, bullet, &p, 1, &old_id), KAIROS_OK);
+    const kairos_filter nothing{8, 0, 0};
+    ASSERT_EQ(kairos_world_set_filter(w, old_id, &nothing), KAIROS_OK);
+    ASSERT_EQ(kairos_world_set_static(w, old_id, 1), KAIROS_OK);
+    ASSERT_EQ(kairos_world_remove(w, old_id), KAIROS_OK);
+    ASSERT_EQ(kairos_world_add(w, bullet, &p, 2, &a), KAIROS_OK);  // the same slot
+    ASSERT_EQ(kairos_world_add(w, bullet, &q, 3, &b), KAIROS_OK);
+    ASSERT_EQ(kairos_world_set_static(w, b, 1), KAIROS_OK);
+    EXPECT_EQ(a & 0xffffffffu, old_id & 0xffffffffu);
+    ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+    const kairos_contact* c = nullptr;
+    size_t n = 0;
+    ASSERT_EQ(kairos_world_contacts(w, &c, &n), KAIROS_OK);
+    EXPECT_EQ(n, 1u);
+    const kairos_pose there = at(3, 0, 0);
+    EXPECT_EQ(kairos_world_move(w, a, &there), KAIROS_OK);  // not static
+    kairos_world_destroy(w);
+}

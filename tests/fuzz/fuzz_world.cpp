@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Fuzz target: sequences of world operations (create with each broad phase, add, remove,
-// set_pose, move, step, contacts, overlaps, step_stats, stale and NULL arguments) decoded from
-// bytes, each checked against the contract; after every step the contacts and overlaps are
-// checked, and pairs whose inner balls provably meet during the step must have a contact.
+// set_pose, move, step, contacts, overlaps, step_stats, filters, static objects, the getters,
+// stale and NULL arguments) decoded from bytes, each checked against the contract; after every
+// step the contacts and overlaps are checked (no pair a filter or two static objects rule out),
+// and wanted pairs whose inner balls provably meet during the step must have a contact.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -29,7 +30,16 @@ struct Object {
     PoseCase pose;  // now (start of the next step)
     PoseCase end;   // end of the next step, when moving
     bool moving = false;
+    bool is_static = false;
+    kairos_filter filter{1, 0xffffffffu, 0};
 };
+
+// The filter rule of C_API.md, and the static rule: whether the world may test the pair at all.
+bool wanted(const Object& a, const Object& b) {
+    if (a.is_static && b.is_static) return false;
+    if (a.filter.group != 0 && a.filter.group == b.filter.group) return a.filter.group > 0;
+    return (a.filter.category_bits & b.filter.mask_bits) != 0 && (b.filter.category_bits & a.filter.mask_bits) != 0;
+}
 
 class WorldFuzz {
 public:
@@ -46,6 +56,8 @@ private:
     void read_results(bool after_step);
     void stats();
     void null_arguments();
+    void set_static_or_filter();
+    void getters();
     // An id to act on: live, removed, random, 0, or a live one with another generation.
     kairos_object_id choose_id(Object** live_out);
     Object* find(kairos_object_id id);
@@ -62,6 +74,7 @@ private:
     std::set<kairos_object_id> issued_;
     uint64_t next_user_ = 1000;
     bool stepped_ = false;              // a step succeeded: results describe it
+    bool ever_filtered_ = false;        // a filter or static object was ever set
     std::vector<Object> step_objects_;  // the objects of that step, with their start and end poses
 };
 
@@ -230,7 +243,7 @@ void WorldFuzz::set_pose(bool as_move) {
     if (o == nullptr) v.require(KAIROS_ERROR_STALE_ID);
     if (null_pose)
         v.require(KAIROS_ERROR_NULL_ARGUMENT);
-    else if (pose.invalid)
+    else if (pose.invalid || (as_move && o != nullptr && o->is_static))
         v.require(KAIROS_ERROR_INVALID_ARGUMENT);
     if (!v.expects_error()) {
         expect_pose(pose, v);
@@ -300,6 +313,9 @@ void WorldFuzz::read_results(bool after_step) {
         if (object_of(a) == nullptr || object_of(b) == nullptr)
             violation("kairos_world_overlaps: pair %zu names an id that was not live during the step", i);
         if (!overlaps.insert({a, b}).second) violation("kairos_world_overlaps: pair %zu listed twice", i);
+        if (object_of(a) != nullptr && object_of(b) != nullptr && !wanted(*object_of(a), *object_of(b)))
+            violation("kairos_world_overlaps: pair %zu (%llu, %llu) is ruled out by the filters or both static", i,
+                      static_cast<unsigned long long>(a), static_cast<unsigned long long>(b));
     }
     const bool moderate_step = [&] {
         for (const Object& o : step_objects_)
@@ -347,6 +363,7 @@ void WorldFuzz::read_results(bool after_step) {
     for (size_t i = 0; i < step_objects_.size(); ++i)
         for (size_t j = i + 1; j < step_objects_.size(); ++j) {
             const Object &a = step_objects_[i], &b = step_objects_[j];
+            if (!wanted(a, b)) continue;
             const real ra = inner_radius(*a.model), rb = inner_radius(*b.model);
             if (ra < 0 || rb < 0) continue;
             // Pairs whose sizes differ by more than 1e6 are beyond the ranges where docs/c-api.md
@@ -434,8 +451,9 @@ void WorldFuzz::stats() {
             violation("kairos_world_step_stats: times %g, %g", s.broad_phase_seconds, s.narrow_phase_seconds);
         const kairos_object_id* pairs;
         size_t pair_count;
+        // The broad phase's pairs include those the filters and static objects then rule out.
         if (kairos_world_overlaps(world_, &pairs, &pair_count) == KAIROS_OK && stepped_ &&
-            s.broad_phase_pairs != pair_count)
+            (ever_filtered_ ? s.broad_phase_pairs < pair_count : s.broad_phase_pairs != pair_count))
             violation("kairos_world_step_stats: broad_phase_pairs %llu but kairos_world_overlaps lists %zu",
                       static_cast<unsigned long long>(s.broad_phase_pairs), pair_count);
     }
@@ -492,6 +510,74 @@ void WorldFuzz::null_arguments() {
     }
 }
 
+// set_static or set_filter on a live, stale or made-up id, with good and bad values.
+void WorldFuzz::set_static_or_filter() {
+    Object* o;
+    const kairos_object_id id = choose_id(&o);
+    Verdict v;
+    if (o == nullptr) v.require(KAIROS_ERROR_STALE_ID);
+    if (in_.pick(2) == 0) {
+        static const int32_t values[8] = {0, 1, 0, 1, 0, 1, 2, -1};
+        const int32_t value = values[in_.pick(8)];
+        if (value != 0 && value != 1) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+        const int32_t status = observe("kairos_world_set_static", [&] { return kairos_world_set_static(world_, id, value); });
+        v.check(status, "kairos_world_set_static");
+        if (status != KAIROS_OK) return;
+        o->is_static = value == 1;
+        ever_filtered_ = true;
+        if (o->is_static) o->moving = false;  // a pending move is cancelled
+        return;
+    }
+    const bool null_filter = in_.rare(16);
+    kairos_filter f;
+    f.category_bits = in_.pick(2) == 0 ? 1u << in_.pick(4) : static_cast<uint32_t>(in_.u64());
+    f.mask_bits = in_.pick(2) == 0 ? 0xffffffffu : static_cast<uint32_t>(in_.u64());
+    static const int32_t groups[8] = {0, 0, 0, 1, -1, 2, -2, 0x7fffffff};
+    f.group = groups[in_.pick(8)];
+    if (null_filter) v.require(KAIROS_ERROR_NULL_ARGUMENT);
+    const int32_t status =
+        observe("kairos_world_set_filter", [&] { return kairos_world_set_filter(world_, id, null_filter ? nullptr : &f); });
+    v.check(status, "kairos_world_set_filter");
+    if (status == KAIROS_OK) {
+        o->filter = f;
+        ever_filtered_ = true;
+    }
+}
+
+// The pose and user data of an id: the world's pose now (the same position, the same rotation
+// as a unit quaternion) and the user data given to add; nothing written on error.
+void WorldFuzz::getters() {
+    Object* o;
+    const kairos_object_id id = choose_id(&o);
+    Verdict v;
+    if (o == nullptr) v.require(KAIROS_ERROR_STALE_ID);
+    kairos_pose pose;
+    poison(pose);
+    int32_t status = observe("kairos_world_get_pose", [&] { return kairos_world_get_pose(world_, id, &pose); });
+    v.check(status, "kairos_world_get_pose");
+    if (status != KAIROS_OK) {
+        if (!poisoned(pose)) violation("kairos_world_get_pose failed but wrote *out");
+    } else {
+        const kairos_pose& want = o->pose.pose;
+        if (std::memcmp(&pose.position, &want.position, sizeof pose.position) != 0)
+            violation("kairos_world_get_pose: position %s, set %s", show(pose), show(want));
+        const kairos_quat& q = pose.orientation;
+        const kairos_quat& g = want.orientation;
+        const double qq = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+        const double gg = g.x * g.x + g.y * g.y + g.z * g.z + g.w * g.w;
+        const double dotqg = q.x * g.x + q.y * g.y + q.z * g.z + q.w * g.w;
+        if (!(std::fabs(qq - 1) <= 1e-14) || !(dotqg >= (1 - 1e-14) * std::sqrt(gg)))
+            violation("kairos_world_get_pose: orientation %s, set %s", show(pose), show(want));
+    }
+    uint64_t user = 0x5a5a5a5a5a5a5a5aull;
+    status = observe("kairos_world_get_user_data", [&] { return kairos_world_get_user_data(world_, id, &user); });
+    v.check(status, "kairos_world_get_user_data");
+    if (status != KAIROS_OK && user != 0x5a5a5a5a5a5a5a5aull) violation("kairos_world_get_user_data failed but wrote *out");
+    if (status == KAIROS_OK && user != o->user)
+        violation("kairos_world_get_user_data: %llu, added with %llu", static_cast<unsigned long long>(user),
+                  static_cast<unsigned long long>(o->user));
+}
+
 void WorldFuzz::run() {
     if (!create()) return;
     ShapeBuilder builder(in_, /*max_depth=*/1, /*thorough=*/false);
@@ -523,6 +609,7 @@ void WorldFuzz::run() {
             case 12:
                 // Every object moves a little (or not at all), then the step: many movers at once.
                 for (Object& o : live_) {
+                    if (o.is_static) continue;
                     const PoseCase end = make_pose_near(in_, o.pose.pose);
                     const int32_t status =
                         observe("kairos_world_move", [&] { return kairos_world_move(world_, o.id, &end.pose); });
@@ -544,10 +631,20 @@ void WorldFuzz::run() {
                 stats();
                 break;
             default:
-                if (in_.pick(2) == 0)
-                    null_arguments();
-                else
-                    shapes_.clear();  // the world's own references keep its shapes alive
+                switch (in_.pick(4)) {
+                    case 0:
+                        null_arguments();
+                        break;
+                    case 1:
+                        shapes_.clear();  // the world's own references keep its shapes alive
+                        break;
+                    case 2:
+                        set_static_or_filter();
+                        break;
+                    default:
+                        getters();
+                        break;
+                }
                 break;
         }
     }
