@@ -39,6 +39,7 @@
 #include <fcl/narrowphase/collision_object.h>
 
 #include "broadphase/broadphase.hpp"
+#include "world/world.hpp"
 #include "scene_rng.hpp"
 
 using namespace kairos;
@@ -370,7 +371,53 @@ void run(benchmark::State& state, SceneKind kind, Variant variant) {
     rows().push_back(r);
 }
 
+// Static level geometry: a floor of n_static unit cubes (a grid, 2 apart, static) under 1,000
+// moving cubes that wander over a corner of it, touching some tiles (near 1) or kept 0.1 above
+// them (near 0). The step time beside the same 1,000 movers with no floor (n_static 0) is what
+// the static objects cost. World (broad phase, narrow phase, contacts), the space-time sweep.
+void run_static_floor(benchmark::State& state) {
+    const int n_static = static_cast<int>(state.range(0));
+    const double lowest = state.range(1) != 0 ? 0.9 : 1.1;
+    constexpr int kMovers = 1000;
+    World world;
+    BoxShape* cube = new BoxShape({0.5, 0.5, 0.5});
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n_static))));
+    for (int i = 0; i < n_static; ++i) {
+        const Pose p{{2.0 * (i % side), 2.0 * (i / side), 0}, {0, 0, 0, 1}};
+        world.set_static(world.add(*cube, p, 0), true);
+    }
+    Rng rng(20261127);
+    std::vector<uint64_t> ids;
+    std::vector<Vec3> at;
+    for (int i = 0; i < kMovers; ++i) {
+        at.push_back({rng.uniform(0, 60), rng.uniform(0, 60), rng.uniform(1.15, 4)});
+        ids.push_back(world.add(*cube, {at.back(), {0, 0, 0, 1}}, 0));
+    }
+    cube->release();  // the world holds its references
+    uint64_t contacts = 0, steps = 0;
+    for (auto _ : state) {
+        for (int i = 0; i < kMovers; ++i) {
+            Vec3& p = at[static_cast<std::size_t>(i)];
+            p = {p.x + rng.uniform(-0.3, 0.3), p.y + rng.uniform(-0.3, 0.3), p.z + rng.uniform(-0.3, 0.3)};
+            p.z = p.z < lowest ? lowest : (p.z > 5 ? 5 : p.z);
+            world.move(ids[static_cast<std::size_t>(i)], {p, {0, 0, 0, 1}});
+        }
+        world.step();
+        contacts += world.contacts().size();
+        ++steps;
+    }
+    state.counters["contacts_per_step"] = static_cast<double>(contacts) / static_cast<double>(steps);
+    state.counters["static"] = n_static;
+}
+
 void register_all() {
+    benchmark::RegisterBenchmark("world_static_floor", run_static_floor)
+        ->ArgNames({"static", "near"})
+        ->Args({0, 0})
+        ->Args({100000, 0})
+        ->Args({0, 1})
+        ->Args({100000, 1})
+        ->Unit(benchmark::kMillisecond);
     const SceneKind scenes[] = {SceneKind::Uniform5, SceneKind::Uniform50, SceneKind::Moving10, SceneKind::Flock};
     const Variant variants[] = {Variant::Spacetime, Variant::Global,      Variant::Queued,    Variant::Encapsulating,
                                 Variant::Fcl,       Variant::BulletSweep, Variant::BulletDbvt};
