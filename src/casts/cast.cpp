@@ -20,7 +20,6 @@
 namespace kairos {
 namespace {
 using namespace kernels;
-
 using gjk_detail::Simplex;
 
 // Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
@@ -375,12 +374,9 @@ private:
         out.normal = normal_;
         out.v = sx_.bits != 0 ? sx_.v : v_;
         if (sx_.bits != 0) {
-            // Coordinates that do not reproduce v (a triangle of two opposite rim points of a
-            // cylinder's cap and the cap's centre between them: collinear, coordinates summing to
-            // 0.5, a hit point 2.5 from the ray point; found by fuzzing) give way to the nearest
-            // sub-simplex whose coordinates do, as the distance's witness points do.
-            // (A point's coordinate is 1 and an edge's reproduce its projection: only triangles and
-            // tetrahedra need the test, and only a failed one needs a copy to change.)
+            // Coordinates that do not reproduce v (two opposite rim points of a cylinder's cap and
+            // its centre: a hit point 2.5 from the ray point; found by fuzzing) give way to the
+            // nearest sub-simplex whose coordinates do (points' and edges' always do).
             const Simplex* sx = &sx_;
             Simplex nearer;
             if (gjk_detail::kBitCount[sx_.bits] >= 3 && !sx_.coordinates_reproduce_v(0x1p-60)) {
