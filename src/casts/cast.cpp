@@ -2,10 +2,8 @@
 // GJK ray cast and shape cast loops, instantiated per pair of support kinds (no virtual call, no
 // allocation). Shape casts run in A's local frame; results go back to the world frame.
 //
-// After a clip the simplex is kept and re-expressed about the new ray point (docs/algorithms.md §3
-// allows restarting it from the last support point too). Restarting was measured by bench_cast
-// (the kairos_restart rows of bench/results/cast.csv) at 1.5-6x the iterations and up to 2.3x the
-// time, and it reached the iteration cap on curved shapes at tolerance 1e-10; it was removed.
+// After a clip the simplex is kept and re-expressed about the new ray point; restarting from the
+// last support point (docs/algorithms.md §3) took more iterations and time in bench_cast.
 #include "casts/cast.hpp"
 #include "gjk/closed_forms.hpp"
 #include "gjk/gjk.hpp"
@@ -65,10 +63,11 @@ Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
     return Simplex::Outcome::Backup;
 }
 
-// After a rebuild: a flat tetrahedron (Simplex::flat_tetrahedron; add() applies the same test)
-// says nothing about whether it holds x, and is replaced by the best proper sub-simplex.
+// After a rebuild: a flat or thin tetrahedron (Simplex::thickness; add() applies the same test)
+// is replaced by the best proper sub-simplex (a flat one says nothing about x, a thin one gives
+// poor coordinates for the contact point).
 Simplex::Outcome check_full(Simplex& s) {
-    if (!s.flat_tetrahedron()) return Simplex::Outcome::Full;
+    if (s.thickness() == Simplex::Thickness::Solid) return Simplex::Outcome::Full;
     return johnson_proper(s, 15u);
 }
 

@@ -208,6 +208,17 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         s.bits = 0;
         s.last_all = 0;
     }
+    // A thin tetrahedron held the origin (Simplex::hold): the shapes intersect, and an estimate
+    // apart by more than 1e-9 of the tetrahedron's extent (the accuracy stated for curved pairs)
+    // is a rounding stop gone wrong. Within it, the estimate's points are the more accurate answer.
+    if (!intersecting && s.held) {
+        const double est = s.bits == 0 || best_vv < dot(s.v, s.v) ? best_vv : dot(s.v, s.v);
+        if (est > 1e-18 * s.held_extent_sq) {
+            s.take_held();
+            out.termination = Termination::FullSimplex;
+            intersecting = true;
+        }
+    }
     if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
     out.iterations = it;
     s.update_lambda();

@@ -69,6 +69,10 @@ struct Simplex {
     Vec3 v;                   // closest point of the current simplex to the origin
     bool want_lambda = true;  // false: triangles skip their barycentric coordinates until
                               // update_lambda() (the distance loop needs them only at the end)
+    bool held = false;        // a thin tetrahedron held the origin (hold(); never cleared)
+    RawVec3s<4> held_y, held_pa, held_pb;
+    double held_lambda[4];
+    double held_extent_sq;    // max ||y_i||^2 of the held tetrahedron
 
     // True when w equals a point of the last simplex before reduction (rule 5). Any such point y
     // has v.y >= ||v||^2 in exact arithmetic, so rule 1 would have fired: w comes back by rounding
@@ -405,12 +409,52 @@ struct Simplex {
         // by the determinants, which lose every digit on flat tetrahedra and would report an
         // intersection for shapes some distance apart.
         if constexpr (all == 15u) {
-            if (origin_in_tetrahedron() && !flat_tetrahedron()) {
-                bits = 15u;
-                v = Vec3{};
-                return Outcome::Full;
+            if (origin_in_tetrahedron()) {
+                const Thickness t = thickness();
+                if (t == Thickness::Solid) {
+                    bits = 15u;
+                    v = Vec3{};
+                    return Outcome::Full;
+                }
+                if (t == Thickness::Thin) hold();
             }
         }
+        return proper_subsets<Old, all>(prev_norm_sq);
+    }
+
+    // A thin tetrahedron that held the origin (thickness()): its signs hold, so the shapes
+    // intersect, but its coordinates are poor (contact points off the shapes by eps L / height).
+    // The loop goes on with Johnson's proper subsets, as for a flat one, which usually reach
+    // contact with accurate points; on a sliver holding the origin deep inside (a box 1e6 long
+    // beside a cylinder) none makes progress and the rounding rules end the loop apart: it then
+    // takes this tetrahedron back (take_held) for its verdict.
+    void hold() {
+        held = true;
+        held_extent_sq = 0;
+        for (int i = 0; i < 4; ++i) {
+            held_extent_sq = max_of(held_extent_sq, norm_sq[i]);
+            held_y[i] = y[i];
+            held_pa[i] = pa[i];
+            held_pb[i] = pb[i];
+            held_lambda[i] = lambda[i];
+        }
+    }
+    void take_held() {
+        for (int i = 0; i < 4; ++i) {
+            y[i] = held_y[i];
+            pa[i] = held_pa[i];
+            pb[i] = held_pb[i];
+            lambda[i] = held_lambda[i];
+            norm_sq[i] = dot(y[i], y[i]);
+        }
+        bits = last_all = 15u;
+        v = Vec3{};
+    }
+
+    template <unsigned Old, unsigned all>
+    Outcome proper_subsets(double prev_norm_sq) {
+        constexpr unsigned last_bit = all & ~Old;
+        constexpr unsigned n_sub = kSubsets.count[Old];
 
         // Johnson's test: the closest sub-simplex holds the new point, has positive determinants,
         // and every point left out has a non-positive determinant in the subset grown by it.
@@ -507,15 +551,27 @@ struct Simplex {
         return true;
     }
 
-    // A tetrahedron whose signed volume is rounding noise next to its edges (|vol| <= 1e-10 |e1||e2||e3|:
-    // coplanar support points, common on flat faces, disks and curved rims) says nothing about
-    // whether it holds the origin: signed volumes of 1e-16 gave "inside" for an origin far outside
-    // the points' polygon. Johnson's test on the proper subsets decides instead. Squares only.
-    bool flat_tetrahedron() const {
+    // How far a tetrahedron's signed volume can be trusted. Flat: thinner than 1e-10 of its
+    // longest edge from y0 (|vol| <= 1e-10 L A, A the largest of the faces' parallelograms at y0):
+    // the volume may be rounding noise (coplanar support points, common on flat faces, disks and
+    // curved rims, whose coordinates carry eps of their distance from the origin; signed volumes of
+    // 1e-16 gave "inside" for an origin far outside the points' polygon), and says nothing about
+    // whether it holds the origin. Thin: not flat, but |vol| <= 1e-10 |e1||e2||e3|: the signs hold,
+    // the barycentric coordinates are poor. The height, not the edges' product, decides flatness:
+    // a sliver with nearly parallel long edges (a box 1e6 long beside a cylinder) has a volume far
+    // above its noise though far below the product of its edges. Squares only.
+    enum class Thickness { Solid, Thin, Flat };
+    Thickness thickness() const {
         const Vec3 e1 = y[1] - y[0], e2 = y[2] - y[0], e3 = y[3] - y[0];
-        const double vol = dot(e1, cross(e2, e3));
-        return !(vol * vol > 1e-20 * (dot(e1, e1) * dot(e2, e2) * dot(e3, e3)));
+        const Vec3 n1 = cross(e2, e3);
+        const double vol_sq = dot(e1, n1) * dot(e1, n1);
+        const double l1 = dot(e1, e1), l2 = dot(e2, e2), l3 = dot(e3, e3);
+        const Vec3 n2 = cross(e3, e1), n3 = cross(e1, e2);
+        const double area_sq = max_of(max_of(dot(n1, n1), dot(n2, n2)), dot(n3, n3));
+        if (!(vol_sq > 1e-20 * (max_of(max_of(l1, l2), l3) * area_sq))) return Thickness::Flat;
+        return vol_sq > 1e-20 * (l1 * l2 * l3) ? Thickness::Solid : Thickness::Thin;
     }
+    bool flat_tetrahedron() const { return thickness() == Thickness::Flat; }
 
     // Barycentric coordinates of the origin in the tetrahedron y0..y3 by signed volumes; true when
     // all are >= 0 (the origin inside or on the boundary) and the tetrahedron has volume.

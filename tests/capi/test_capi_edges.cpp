@@ -1042,4 +1042,63 @@ TEST(GjkEdges, MotionCastOfAShapeWhoseRadiusSquaredUnderflows) {
     kairos_shape_release(b);
 }
 
+// The fuzzer's finding of 2026-11-27 (tests/fuzz/findings/distance_long_box_cylinder.c): a box of
+// half extents (6.79, 1, L) beside an upright cylinder of radius 1 (parallel axes), overlapping by
+// 1.5. From L = 1e6 on, distance, intersect and signed distance said 0.031 apart in both orders:
+// the tetrahedron that held the origin was a sliver (edges 2e6 long, nearly parallel) and the
+// flatness test, relative to its edges' product, called it flat. Truth by construction: the
+// cylinder's disk lies inside the box's x span, so the pair's gap is g across the box's bottom face
+// and, overlapping, its depth is -g (pushing B down; up takes 4 + g). Whole scene turned about the
+// world origin by seeded rotations too. Accuracy bound: 1e-9 of the size (L) for the curved pair.
+TEST(GjkEdges, LongBoxBesideACylinderAtGapsBothOrders) {
+    const uint64_t seed = 27112026;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> gauss;
+    kairos_shape* cylinder = nullptr;
+    ASSERT_EQ(kairos_shape_cylinder(1, 7.8455481803616385, &cylinder), KAIROS_OK);
+    const V box_centre{-4, -3.4999923704890517, -3.9765621423666744};
+    int intersecting = 0, separated = 0;
+    for (double half_length = 1e2; half_length <= 1e6; half_length *= 10) {
+        kairos_shape* box = nullptr;
+        ASSERT_EQ(kairos_shape_box({6.785763332570383, 1, half_length}, &box), KAIROS_OK);
+        for (int turn = 0; turn < 4; ++turn) {
+            const Rot r = turn == 0 ? make_rot({0, 0, 1}, 0)
+                                    : make_rot({gauss(rng), gauss(rng), gauss(rng)}, std::uniform_real_distribution<double>(0, M_PI)(rng));
+            const kairos_quat q{r.q[0], r.q[1], r.q[2], r.q[3]};
+            for (double gap : {-1.5, -0.5, -1e-2, 1e-2, 0.5}) {
+                // The finding's own pose (gap -1.49999...) first: the cylinder at (-4, -4, -4).
+                const double cy = gap == -1.5 ? -4.0 : box_centre.y - 1 - 1 - gap;
+                const double truth = gap == -1.5 ? (box_centre.y - 1) - (cy + 1) : gap;
+                const kairos_pose pa{kv(apply(r, box_centre)), q}, pb{kv(apply(r, {-4, cy, -4})), q};
+                const double bound = 1e-9 * half_length;
+                SCOPED_TRACE(testing::Message() << "seed " << seed << " half length " << half_length << " turn " << turn
+                                                << " gap " << gap);
+                const Query d = both_orders(box, pa, cylinder, pb);
+                kairos_distance_result sab{}, sba{};
+                ASSERT_EQ(kairos_signed_distance(box, &pa, cylinder, &pb, nullptr, &sab), KAIROS_OK);
+                ASSERT_EQ(kairos_signed_distance(cylinder, &pb, box, &pa, nullptr, &sba), KAIROS_OK);
+                int32_t iab = -1, iba = -1;
+                ASSERT_EQ(kairos_intersect(box, &pa, cylinder, &pb, nullptr, &iab), KAIROS_OK);
+                ASSERT_EQ(kairos_intersect(cylinder, &pb, box, &pa, nullptr, &iba), KAIROS_OK);
+                const int want = truth < 0 ? 1 : 0;
+                EXPECT_EQ(iab, want);
+                EXPECT_EQ(iba, want);
+                for (const auto* x : {&d.ab, &d.ba}) {
+                    EXPECT_EQ(x->intersecting, want) << "termination " << x->termination;
+                    EXPECT_NEAR(x->distance, std::max(truth, 0.0), bound) << "termination " << x->termination;
+                }
+                for (const auto* x : {&sab, &sba}) {
+                    EXPECT_NEAR(x->distance, truth, bound) << "termination " << x->termination;
+                    EXPECT_NEAR(apart(*x), std::fabs(x->distance), bound);
+                }
+                (want ? intersecting : separated) += 1;
+            }
+        }
+        kairos_shape_release(box);
+    }
+    EXPECT_EQ(intersecting, 5 * 4 * 3);
+    EXPECT_EQ(separated, 5 * 4 * 2);
+    kairos_shape_release(cylinder);
+}
+
 }  // namespace
