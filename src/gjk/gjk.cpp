@@ -86,6 +86,12 @@ constexpr int kRecoveries = 6;
 // undone. When a rounding-limit rule fires far from the proven lower bound, the nearest point of
 // the hull of the last points is found by enumeration (Simplex::nearest_in_hull), and failing
 // that the simplex restarts from the best axis; the best estimate of every run is kept.
+// v of norm^2 nv touches the origin: within rounding of it relative to the simplex's size
+// (max_norm_sq), or within the cores' margin.
+inline bool touching(double nv, double max_norm_sq, double margin_sq) {
+    return nv <= gjk_detail::kNearContact * max_norm_sq || nv <= margin_sq;
+}
+
 template <class Pair>
 LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations) {
     // pair by value: its scale is set from the first support points
@@ -162,14 +168,27 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
                     // points). The previous estimate is kept.
                     s.restore(prev_bits);
                     stop = Termination::JohnsonFailed;
-                } else if (nv <= gjk_detail::kNearContact * s.max_norm_sq()) {
-                    // Rule 2: v is within rounding of the origin relative to the simplex's size.
-                    out.termination = Termination::NearContact;
-                    intersecting = true;
-                    break;
-                } else if (nv <= margin_sq) {
-                    // Rounded shapes: the cores are within the sum of the radii, so they overlap.
-                    out.termination = Termination::FullSimplex;
+                } else if (touching(nv, s.max_norm_sq(), margin_sq)) {
+                    // A sliver triangle of A - B (two flat slabs overlapping) that Johnson's
+                    // determinants accepted can have its plane through the origin while the
+                    // triangle passes beside it: v is then the projection on the plane, and the
+                    // coordinates, far from reproducing it, put the contact point off the shapes
+                    // by their length. The triangle's own nearest point is taken instead; the loop
+                    // goes on from it unless it touches too.
+                    if (gjk_detail::kBitCount[s.bits] == 3) {
+                        s.update_lambda();
+                        if (!s.coordinates_reproduce_v(0x1p-60) && s.nearest_in_hull(s.bits, INFINITY, 0x1p-60) &&
+                            !touching(dot(s.v, s.v), s.max_norm_sq(), margin_sq)) {
+                            vv = dot(s.v, s.v);
+                            v = s.v;
+                            continue;
+                        }
+                    }
+                    // Rule 2: v is within rounding of the origin relative to the simplex's size;
+                    // or, rounded shapes, the cores are within the sum of the radii.
+                    const double n2 = dot(s.v, s.v);
+                    out.termination = n2 <= gjk_detail::kNearContact * s.max_norm_sq() ? Termination::NearContact
+                                                                                      : Termination::FullSimplex;
                     intersecting = true;
                     break;
                 } else if (prev_bits != 0 && vv - nv <= gjk_detail::kNoProgress * vv) {
@@ -183,9 +202,14 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
                 }
             }
         }
-        // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv.
-        if (recoveries_left == 0 ||
-            settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>)) {
+        // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv. After a
+        // rejected step (no progress, Johnson failed) the points' hull may hold a nearer point the
+        // determinants missed, even when the estimate counts as settled: a triangle of a slab
+        // 1e-8 thick holding the origin in its plane, rejected, left an estimate 1e-9 of the size
+        // apart. A repeated support point (polytopes' usual end) adds no point: settled decides.
+        const bool rejected = stop == Termination::NoProgress || stop == Termination::JohnsonFailed;
+        const bool done = settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>);
+        if (recoveries_left == 0 || (done && !rejected)) {
             out.termination = stop;
             break;
         }
@@ -199,6 +223,10 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
                 break;
             }
             continue;
+        }
+        if (done) {
+            out.termination = stop;
+            break;
         }
         // Restart from the best axis with an empty simplex (v stays).
         if (vv < best_vv) {

@@ -272,3 +272,68 @@ TEST(FlatShapes, TriangleFloorInAWorldAndASpinningRod) {
 }
 
 }  // namespace
+
+namespace {
+
+// Outside the axis-aligned box of centre cc and half extents h by how much (<= 0: inside).
+double box_excess(V p, V cc, V h) {
+    const V d = p - cc;
+    return std::max({std::fabs(d.x) - h.x, std::fabs(d.y) - h.y, std::fabs(d.z) - h.z});
+}
+
+}  // namespace
+
+// The fuzzer's finding of 2026-11-27 (tests/fuzz/findings/fuzz_queries-distance_flat_boxes_witness_point.bin):
+// two boxes 1.7e-8 and 2e-9 thick lying in one plane, overlapping. A - B is a slab; Johnson's
+// determinants accepted a sliver triangle of it whose plane passed through the origin while the
+// triangle did not, so kairos_distance said touching (NEAR_CONTACT) with a contact point 10 outside
+// B. Here: slabs 1e-10 .. 1e-6 thick (faces parallel, the thin axis z), B's footprint inside A's
+// in x and y (half the cases with A's width and centre in y, as in the finding), their faces g
+// apart (g = -(ta + tb): one mid-plane), both orders. Truth: the gap g. Checks: the distance
+// within 1e-9 of the size (the band where touching may read either way), witness points in their
+// boxes, a distance apart when apart, the contact point in both boxes when not.
+TEST(FlatShapes, ThinSlabsInOnePlaneGiveWitnessPointsInTheBoxes) {
+    const uint64_t seed = 20261127;
+    Rng rng(seed);
+    int intersecting = 0, separated = 0, cases = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const double ta = std::pow(10.0, -uniform(rng, 6, 10)), tb = std::pow(10.0, -uniform(rng, 6, 10));
+        // Every other six cases, equal widths in y and one y centre (the finding's support ties).
+        const bool tied = (i / 6) % 2 == 0;
+        const V ha{uniform(rng, 2, 10), uniform(rng, 0.5, 2), ta};
+        const V hb{uniform(rng, 0.2, 1.5), tied ? ha.y : uniform(rng, 0.2, 0.5), tb};
+        const double gaps[] = {-(ta + tb), -std::min(ta, tb), -1e-12, 1e-12, 1e-9, 1e-6};
+        const double g = gaps[i % 6];
+        const V ca = random_point(rng, 5);
+        const V cb = ca + V{uniform(rng, hb.x - ha.x, ha.x - hb.x), tied ? 0.0 : uniform(rng, -0.1, 0.1),
+                            (i & 1 ? 1 : -1) * (ta + tb + g)};
+        kairos_shape *a = nullptr, *b = nullptr;
+        ASSERT_EQ(kairos_shape_box(c(ha), &a), KAIROS_OK);
+        ASSERT_EQ(kairos_shape_box(c(hb), &b), KAIROS_OK);
+        const kairos_pose pa = at(ca), pb = at(cb);
+        const double size = norm(ha) + norm(hb), tol = 1e-9 * size;
+        for (int order = 0; order < 2; ++order) {
+            SCOPED_TRACE(testing::Message() << "seed " << seed << " case " << i << " order " << order << " gap " << g);
+            kairos_distance_result r{};
+            ASSERT_EQ(order == 0 ? kairos_distance(a, &pa, b, &pb, nullptr, &r) : kairos_distance(b, &pb, a, &pa, nullptr, &r),
+                      KAIROS_OK);
+            ++cases;
+            const V qa = v(order == 0 ? r.point_a : r.point_b), qb = v(order == 0 ? r.point_b : r.point_a);
+            EXPECT_NEAR(r.distance, std::max(g, 0.0), tol) << "termination " << r.termination;
+            EXPECT_LE(box_excess(qa, ca, ha), tol) << "termination " << r.termination;
+            EXPECT_LE(box_excess(qb, cb, hb), tol) << "termination " << r.termination;
+            if (r.intersecting) {
+                ++intersecting;
+                EXPECT_LE(box_excess(qa, cb, hb), tol) << "contact point outside B";
+            } else {
+                ++separated;
+                EXPECT_NEAR(norm(qb - qa), r.distance, tol);
+            }
+        }
+        kairos_shape_release(a);
+        kairos_shape_release(b);
+    }
+    std::printf("[thin slabs] %d queries: %d intersecting, %d separated\n", cases, intersecting, separated);
+    EXPECT_GT(intersecting, cases / 10);
+    EXPECT_GT(separated, cases / 5);
+}
