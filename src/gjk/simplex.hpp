@@ -228,11 +228,12 @@ struct Simplex {
                 const double ee = dot(e, e);
                 if (ee > 0 && std::isfinite(ee)) [[likely]] {
                     const double t = -dot(y[i], e) / ee;
-                    // e x (y_i x e) / |e|^2: each component keeps its own relative accuracy, where
-                    // y_i + t e would cancel to eps ||y_i|| (a slab's edge 18 long and 1e-8 thick
-                    // nearly through the origin: the component along the edge, 1e-18, is what
-                    // picks the next support point among the slab's tied corners).
-                    v = (1 / ee) * cross(e, cross(y[i], e));
+                    v = y[i] + t * e;
+                    // Near contact (||v|| << ||y_i||) y_i + t e cancels to eps ||y_i|| in every
+                    // component; e x (y_i x e) / |e|^2 keeps each one's relative accuracy (a slab's
+                    // edge 18 long and 1e-8 thick nearly through the origin: the component along the
+                    // edge, 1e-18, is what picks the next support point among the slab's tied corners).
+                    if (dot(v, v) < 0x1p-20 * norm_sq[i]) v = (1 / ee) * cross(e, cross(y[i], e));
                     lambda[i] = 1 - t;
                     lambda[j] = t;
                     return;
