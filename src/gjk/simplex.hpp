@@ -392,6 +392,35 @@ struct Simplex {
         return ok;
     }
 
+    // A thin tetrahedron that held the origin (thickness()): its signs hold, so the shapes
+    // intersect, but its coordinates are poor (contact points off the shapes by eps L / height).
+    // The loop goes on with Johnson's proper subsets, as for a flat one, which usually reach
+    // contact with accurate points; on a sliver holding the origin deep inside (a box 1e6 long
+    // beside a cylinder) none makes progress and the rounding rules end the loop apart: it then
+    // takes this tetrahedron back (take_held) for its verdict.
+    void hold() {
+        held = true;
+        held_extent_sq = 0;
+        for (int i = 0; i < 4; ++i) {
+            held_extent_sq = max_of(held_extent_sq, norm_sq[i]);
+            held_y[i] = y[i];
+            held_pa[i] = pa[i];
+            held_pb[i] = pb[i];
+            held_lambda[i] = lambda[i];
+        }
+    }
+    void take_held() {
+        for (int i = 0; i < 4; ++i) {
+            y[i] = held_y[i];
+            pa[i] = held_pa[i];
+            pb[i] = held_pb[i];
+            lambda[i] = held_lambda[i];
+            norm_sq[i] = dot(y[i], y[i]);
+        }
+        bits = last_all = 15u;
+        v = Vec3{};
+    }
+
     // add() with the new point already in slot `last`.
     template <unsigned Old>
     Outcome add_from(double prev_norm_sq) {
@@ -424,42 +453,6 @@ struct Simplex {
                 if (t == Thickness::Thin) hold();
             }
         }
-        return proper_subsets<Old, all>(prev_norm_sq);
-    }
-
-    // A thin tetrahedron that held the origin (thickness()): its signs hold, so the shapes
-    // intersect, but its coordinates are poor (contact points off the shapes by eps L / height).
-    // The loop goes on with Johnson's proper subsets, as for a flat one, which usually reach
-    // contact with accurate points; on a sliver holding the origin deep inside (a box 1e6 long
-    // beside a cylinder) none makes progress and the rounding rules end the loop apart: it then
-    // takes this tetrahedron back (take_held) for its verdict.
-    void hold() {
-        held = true;
-        held_extent_sq = 0;
-        for (int i = 0; i < 4; ++i) {
-            held_extent_sq = max_of(held_extent_sq, norm_sq[i]);
-            held_y[i] = y[i];
-            held_pa[i] = pa[i];
-            held_pb[i] = pb[i];
-            held_lambda[i] = lambda[i];
-        }
-    }
-    void take_held() {
-        for (int i = 0; i < 4; ++i) {
-            y[i] = held_y[i];
-            pa[i] = held_pa[i];
-            pb[i] = held_pb[i];
-            lambda[i] = held_lambda[i];
-            norm_sq[i] = dot(y[i], y[i]);
-        }
-        bits = last_all = 15u;
-        v = Vec3{};
-    }
-
-    template <unsigned Old, unsigned all>
-    Outcome proper_subsets(double prev_norm_sq) {
-        constexpr unsigned last_bit = all & ~Old;
-        constexpr unsigned n_sub = kSubsets.count[Old];
 
         // Johnson's test: the closest sub-simplex holds the new point, has positive determinants,
         // and every point left out has a non-positive determinant in the subset grown by it.
