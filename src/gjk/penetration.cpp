@@ -447,6 +447,40 @@ private:
     int nv_ = 0, nf_ = 0;
 };
 
+// A point core inside a box core: the depth through the nearest face, exact. (The expansion on
+// a slab 1e9 times wider than thick, a ball's centre inside it, tilted its axis by 3e-6: found
+// by fuzzing.) Points and axis in A's frame, as the expansion gives them.
+CoreDepth point_in_box_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b) {
+    const bool a_is_box = ca.core == Core::Box;
+    const Transform& box_pose = a_is_box ? pose_a : pose_b;
+    const Transform& point_pose = a_is_box ? pose_b : pose_a;
+    const Vec3 h = static_cast<const BoxShape&>(a_is_box ? *ca.shape : *cb.shape).half_extents;
+    const Vec3 t = box_pose.to_local_direction(point_pose.translation - box_pose.translation);
+    int axis = 0;
+    double room = h.x - std::fabs(t.x);
+    for (int i = 1; i < 3; ++i) {
+        const double r = h[i] - std::fabs(t[i]);
+        if (r < room) room = r, axis = i;
+    }
+    const double side = t[axis] < 0 ? -1.0 : 1.0;
+    Vec3 out_dir{}, face = t;  // box frame: the way the point leaves, and where
+    out_dir[axis] = side;
+    face[axis] = side * h[axis];
+    CoreDepth d;
+    d.depth = room > 0 ? room : 0;
+    d.iterations = 1;
+    d.termination = Termination::RelativeError;
+    if (a_is_box) {  // B, the point, leaves along out_dir
+        d.n = out_dir;
+        d.point_a = face;
+        d.point_b = t;
+    } else {  // B, the box, moves the other way
+        d.n = -pose_a.to_local_direction(pose_b.rotation * out_dir);
+        d.point_b = pose_a.to_local_direction(pose_b.apply(face) - pose_a.translation);
+    }
+    return d;
+}
+
 }  // namespace
 
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
@@ -484,7 +518,11 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     }
     CoreDepth depth;
     double total;
-    if (axis_shows_gap) {
+    const bool point_box = (ca.core == Core::Point && cb.core == Core::Box) || (ca.core == Core::Box && cb.core == Core::Point);
+    if (point_box && c.overlap) {
+        depth = point_in_box_depth(ca, pose_a, cb, pose_b);
+        total = depth.depth + margin;
+    } else if (axis_shows_gap) {
         // Only the radii overlap: the cores' closest points and axis, the radii less their gap.
         depth.n = c.unit;
         depth.point_a = c.point_a;

@@ -373,3 +373,39 @@ TEST(Penetration, ABallBesideALongCylinder) {
 }
 
 }  // namespace
+
+// CI's fuzz finding of 2026-11-27: a ball of radius 6.5e13 centred inside a box 6.5e13 wide and
+// 6.5e4 thick (a slab, 1e9 times wider than thick), turned. The depth was right but the expansion's
+// axis (on the point-minus-slab core difference) was tilted by 3e-6, so the shapes overlapped by
+// 3.9e8 more along it. A point core inside a box core now takes the nearest face, exactly. Truth:
+// the radius plus the centre's room to that face; the axis is the face's normal. Slabs of aspect
+// 1 .. 1e9, scales 1e-3 .. 1e13, balls and points, both orders (check()).
+TEST(Penetration, ABallCentredInsideASlab) {
+    const uint64_t seed = 1127;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Judge j;
+    for (double scale : {1e-3, 1.0, 6.5e13})
+        for (double aspect : {1.0, 1e3, 1e6, 1e9})
+            for (int i = 0; i < 20; ++i) {
+                const Vec3 h = scale * Vec3{1 + 0.2 * u(rng), 1 + 0.2 * u(rng), 1 / aspect};
+                const Vec3 local{0.9 * h.x * u(rng), 0.9 * h.y * u(rng), 0.9 * h.z * u(rng)};
+                const double room = std::min({h.x - std::fabs(local.x), h.y - std::fabs(local.y), h.z - std::fabs(local.z)});
+                const Transform xb = pose(scale * Vec3{u(rng), u(rng), u(rng)}, random_quat(rng));
+                const std::string where = "seed " + std::to_string(seed) + " scale " + std::to_string(scale) +
+                                          " aspect " + std::to_string(aspect) + " case " + std::to_string(i);
+                BoxShape box(h);
+                const double r = i % 2 ? scale * (0.1 + std::fabs(u(rng))) : 0;
+                if (r > 0) {
+                    SphereShape ball(r);
+                    check(box, xb, ball, pose(xb.apply(local), random_quat(rng)), -(r + room), scale, 1e-12, "ball " + where, j);
+                } else {
+                    PointShape point;
+                    check(box, xb, point, pose(xb.apply(local), random_quat(rng)), -room, scale, 1e-12, "point " + where, j);
+                }
+            }
+    std::printf("balls and points inside slabs: %d signed distances; error over the size median %.3g, max %.3g\n",
+                j.cases, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_EQ(j.overlapping, j.cases);
+}
