@@ -203,11 +203,14 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             }
         }
         // A rounding-limit rule fired; s holds this run's best estimate, of norm^2 vv. After a
-        // rejected step (no progress, Johnson failed) the points' hull may hold a nearer point the
-        // determinants missed, even when the estimate counts as settled: a triangle of a slab
-        // 1e-8 thick holding the origin in its plane, rejected, left an estimate 1e-9 of the size
-        // apart. A repeated support point (polytopes' usual end) adds no point: settled decides.
-        const bool rejected = stop == Termination::NoProgress || stop == Termination::JohnsonFailed;
+        // rejected step (no progress, Johnson failed) with the lower bound under half the estimate,
+        // the points' hull may hold a nearer point the determinants missed, even when the estimate
+        // counts as settled: a triangle of a slab 1e-8 thick holding the origin in its plane,
+        // rejected, left an estimate 1e-9 of the size apart, lower bound 0. A repeated support
+        // point (polytopes' usual end) adds no point, and a bound close to the estimate leaves no
+        // room: settled decides.
+        const bool rejected = (stop == Termination::NoProgress || stop == Termination::JohnsonFailed) &&
+                              4 * lower_num < vv * lower_den;
         const bool done = settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>);
         if (recoveries_left == 0 || (done && !rejected)) {
             out.termination = stop;
