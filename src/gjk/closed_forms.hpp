@@ -136,7 +136,11 @@ inline BallEntry ball_entry(Vec3 s, Vec3 r, double radius) {
     const Vec3 u = (1 / rn_len) * rn;
     const double m = -dot(s, u);       // distance along u to the closest approach
     if (!(m > 0)) return e;            // moving away (and not inside)
-    const Vec3 w = s + m * u;          // the closest approach's offset
+    // The closest approach's offset, made square to u again: s + m u keeps eps |s| along u, which
+    // exceeds the radius when a tiny ball lies far from the ray's start, and would tilt the entry
+    // normal to follow the motion (found by fuzzing: radius 1e-15 at 4 units).
+    Vec3 w = s + m * u;
+    w -= dot(w, u) * u;
     const double ww = dot(w, w);
     if (ww > rr) return e;
     const double h = std::sqrt((rad - std::sqrt(ww)) * (rad + std::sqrt(ww)));

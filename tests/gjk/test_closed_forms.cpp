@@ -531,3 +531,38 @@ TEST(ClosedForms, TinyBallsMetHeadOnGiveANormalAgainstTheMotion) {
 }
 
 }  // namespace
+
+// A fuzz finding: a ball of radius 1e-15 about 4 units from the start of a head-on cast. The
+// closest approach s + m u keeps about eps |s| = 1e-15 along u, as much as the radius, so the entry
+// normal could follow the motion instead of opposing it. Random directions and offsets within the
+// radius, both shape-cast orders and the ray cast; the normal must oppose the relative motion.
+TEST(ClosedForms, TinyBallFarAlongTheMotionGivesAnOpposingNormal) {
+    std::mt19937_64 rng(20261127);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    SphereShape big(1e-15), small(9.6e-300);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        Vec3 u{unit(rng), unit(rng), unit(rng)};
+        if (!(dot(u, u) > 0.01)) continue;
+        u = u / length(u);
+        const Vec3 across = cross(u, Vec3{unit(rng), unit(rng), unit(rng)});
+        const double off = 0.9e-15 * std::fabs(unit(rng));
+        const Vec3 start = -4.0 * u + (length(across) > 0 ? (off / length(across)) * across : Vec3{});
+        const Vec3 r = 61.0 * u;
+        const Transform at0 = make_transform({0, 0, 0}, Quat{}), from = make_transform(start, Quat{});
+        const CastResult c[3] = {shape_cast(small, from, r, big, at0, {0, 0, 0}, 1e-10, 256),
+                                 shape_cast(big, at0, {0, 0, 0}, small, from, r, 1e-10, 256),
+                                 ray_cast(big, at0, start, r, 1e-10, 256)};
+        // Normal . u: > 0 when A moves onto B (from A toward B), < 0 when B moves onto A and for
+        // the ray (outward from the ball).
+        const double sign[3] = {-1, 1, 1};
+        for (int k = 0; k < 3; ++k) {
+            if (!c[k].hit) continue;
+            ++hits;
+            EXPECT_LE(sign[k] * dot(c[k].normal, u), 1e-6)
+                << "case " << i << " query " << k << " normal (" << c[k].normal.x << ", " << c[k].normal.y << ", "
+                << c[k].normal.z << ")";
+        }
+    }
+    EXPECT_GT(hits, 3000);  // most of the 3 x ~1900 queries hit: the offsets lie within the radius
+}
