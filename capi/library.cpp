@@ -88,6 +88,9 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         kairos_world_set_static,
         kairos_world_get_pose,
         kairos_world_get_user_data,
+        kairos_world_ray_cast,
+        kairos_world_shape_cast,
+        kairos_world_query_box,
     };
     const char* const fn = __func__;
     return kairos::capi::guarded(fn, [&] {

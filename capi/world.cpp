@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // C API world: the handle, object bookkeeping, step, contacts, overlaps and step stats.
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -26,6 +27,25 @@ const World::Object& live_object(const kairos_world* w, kairos_object_id id, con
         fail(KAIROS_ERROR_STALE_ID, function, "id %llu is %s", static_cast<unsigned long long>(id),
              id == 0 ? "0, which is never a valid id" : "not a live object of this world (unknown or removed)");
     return *o;
+}
+
+Filter filter_of(const kairos_filter* f) {
+    return f == nullptr ? Filter{} : Filter{f->category_bits, f->mask_bits, f->group};
+}
+
+// The C layout of a world query's hit, once its numbers are known to be finite (see boundary.hpp).
+kairos_world_hit checked(const WorldHit& h, const char* fn) {
+    kairos_world_hit c{};
+    c.toi = 1;
+    if (!h.hit) return c;
+    require_finite_result(std::isfinite(h.toi) && is_finite(h.point) && is_finite(h.normal), fn);
+    c.hit = 1;
+    c.id = h.id;
+    c.user_data = h.user_data;
+    c.toi = h.toi;
+    c.point = to_c(h.point);
+    c.normal = to_c(h.normal);
+    return c;
 }
 
 }  // namespace
@@ -152,6 +172,63 @@ KAIROS_API int32_t kairos_world_get_user_data(const kairos_world* w, kairos_obje
         const World::Object& o = live_object(w, id, fn);
         require_pointer(out, fn, "out");
         *out = o.user_data;
+    });
+}
+
+KAIROS_API int32_t kairos_world_ray_cast(const kairos_world* w, kairos_vec3 origin, kairos_vec3 translation,
+                                         const kairos_filter* filter, kairos_world_hit* out) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        const Vec3 o = read_point(origin, fn, "origin");
+        const Vec3 t = read_point(translation, fn, "translation");
+        const Filter f = filter_of(filter);
+        require_pointer(out, fn, "out");
+        *out = checked(w->core.ray_cast(o, t, filter != nullptr ? &f : nullptr), fn);
+    });
+}
+
+KAIROS_API int32_t kairos_world_shape_cast(const kairos_world* w, const kairos_shape* s, const kairos_motion* motion,
+                                           const kairos_filter* filter, const kairos_query_settings* settings,
+                                           kairos_world_hit* out) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        require_pointer(s, fn, "s");
+        require_pointer(motion, fn, "motion");
+        const BodyPose p0 = read_pose(&motion->start, fn, "motion->start");
+        const BodyPose p1 = read_pose(&motion->end, fn, "motion->end");
+        const Filter f = filter_of(filter);
+        QuerySettings qs{w->core.settings().tolerance, w->core.settings().max_iterations};
+        if (settings != nullptr) qs = read_query_settings(settings, fn, "settings");
+        require_pointer(out, fn, "out");
+        *out = checked(w->core.shape_cast(shape_of(s), state_of(p0), state_of(p1), filter != nullptr ? &f : nullptr,
+                                          qs.tolerance, qs.max_iterations),
+                       fn);
+    });
+}
+
+KAIROS_API int32_t kairos_world_query_box(const kairos_world* w, kairos_vec3 min, kairos_vec3 max,
+                                          const kairos_filter* filter, kairos_object_id* ids, size_t capacity,
+                                          size_t* count) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        const Vec3 lo = read_point(min, fn, "min");
+        const Vec3 hi = read_point(max, fn, "max");
+        for (int k = 0; k < 3; ++k) {
+            if (!(lo[k] <= hi[k]))
+                fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "min.%c (%.17g) is above max.%c (%.17g)", "xyz"[k], lo[k],
+                     "xyz"[k], hi[k]);
+        }
+        const Filter f = filter_of(filter);
+        if (capacity > 0) require_pointer(ids, fn, "ids");
+        require_pointer(count, fn, "count");
+        std::vector<uint64_t> found;
+        w->core.query_box({lo, hi}, filter != nullptr ? &f : nullptr, found);
+        const size_t n = found.size() < capacity ? found.size() : capacity;
+        if (n > 0) std::memcpy(ids, found.data(), n * sizeof(kairos_object_id));
+        *count = found.size();
     });
 }
 

@@ -414,6 +414,45 @@ KAIROS_API int32_t kairos_world_get_pose(const kairos_world* w, kairos_object_id
 /* The user data given to kairos_world_add. */
 KAIROS_API int32_t kairos_world_get_user_data(const kairos_world* w, kairos_object_id id, uint64_t* out);
 
+/* World queries. Each sees the objects at their current poses (the start of the next step: moves
+ * given for that step are not applied), takes an optional filter (NULL: every object; otherwise
+ * only the objects whose filter collides with *filter by the rule above, so category_bits says
+ * what the query is and mask_bits what it sees), and changes nothing. They are const: several
+ * threads may query one world at once while no thread changes it. Found through the broad phase
+ * (the default broad phase visits only the columns the query reaches; the others scan every
+ * object). */
+
+/* The earliest hit of a world query. Frozen layout. On a miss: hit 0, id 0, user_data 0, toi 1,
+ * point and normal 0. */
+typedef struct kairos_world_hit {
+    int32_t          hit;        /* 1: something was hit */
+    kairos_object_id id;         /* the object hit (ties at one toi: the smaller id) */
+    uint64_t         user_data;  /* its user data */
+    double           toi;        /* fraction of the query's motion in [0, 1] */
+    kairos_vec3      point;      /* world frame, the contact at toi */
+    kairos_vec3      normal;     /* world frame, unit, outward from the object hit */
+} kairos_world_hit;
+
+/* The earliest object the ray origin + t * translation (t in [0, 1], world frame) hits, as
+ * kairos_ray_cast against each object with the world's query settings. A ray starting inside an
+ * object hits it at toi 0. */
+KAIROS_API int32_t kairos_world_ray_cast(const kairos_world* w, kairos_vec3 origin, kairos_vec3 translation,
+                                         const kairos_filter* filter, kairos_world_hit* out);
+/* The earliest object that shape s hits while it follows *motion (world frame, the objects
+ * standing still): kairos_shape_cast when the motion's orientations are the same, otherwise
+ * kairos_motion_cast (with its tolerance rule), against each object. settings: NULL takes the
+ * world's query settings. The shape is only read; the world does not retain it. */
+KAIROS_API int32_t kairos_world_shape_cast(const kairos_world* w, const kairos_shape* s, const kairos_motion* motion,
+                                           const kairos_filter* filter, const kairos_query_settings* settings,
+                                           kairos_world_hit* out);
+/* The ids of the objects whose bounding box at the current pose (the box kairos_shape_bounds gives)
+ * overlaps the closed box [min, max] (world frame, finite, min <= max on every axis), in
+ * increasing order. At most `capacity` ids are written to `ids` (NULL when capacity is 0);
+ * *count receives the number found, which may exceed capacity (call again with a larger array). */
+KAIROS_API int32_t kairos_world_query_box(const kairos_world* w, kairos_vec3 min, kairos_vec3 max,
+                                          const kairos_filter* filter, kairos_object_id* ids, size_t capacity,
+                                          size_t* count);
+
 /* ---------------------------------------------------------------------------------------------
  * Function table for dlopen users: dlsym only "kairos_get_api", then call through the table.
  * The table begins with struct_size and abi_version; function pointers are only ever appended,
@@ -472,6 +511,11 @@ typedef struct kairos_api {
     int32_t (*world_set_static)(kairos_world*, kairos_object_id, int32_t);
     int32_t (*world_get_pose)(const kairos_world*, kairos_object_id, kairos_pose*);
     int32_t (*world_get_user_data)(const kairos_world*, kairos_object_id, uint64_t*);
+    int32_t (*world_ray_cast)(const kairos_world*, kairos_vec3, kairos_vec3, const kairos_filter*, kairos_world_hit*);
+    int32_t (*world_shape_cast)(const kairos_world*, const kairos_shape*, const kairos_motion*, const kairos_filter*,
+                                const kairos_query_settings*, kairos_world_hit*);
+    int32_t (*world_query_box)(const kairos_world*, kairos_vec3, kairos_vec3, const kairos_filter*, kairos_object_id*,
+                               size_t, size_t*);
 } kairos_api;
 
 /* The function table for abi_version (1 <= abi_version <= KAIROS_ABI_VERSION of the library).

@@ -115,6 +115,22 @@ bool BroadPhase::move(uint32_t id, const Aabb& box_end) {
     return true;
 }
 
+bool BroadPhase::set_static(uint32_t id, bool is_static) {
+    if (!contains(id)) return false;
+    Record& r = records_[id];
+    if (r.is_static == is_static) return true;
+    if (is_static && r.moving) return false;
+    r.is_static = is_static;
+    if (r.state == State::Live) on_static_change(id);
+    return true;
+}
+
+void BroadPhase::on_query_box(const Aabb& q, std::vector<uint32_t>& out) const {
+    for (uint32_t id = 0; id < records_.size(); ++id) {
+        if (contains(id) && boxes_overlap(records_[id].box, q)) out.push_back(id);
+    }
+}
+
 void BroadPhase::flush() {
     // The lists may hold ids whose state changed since they were queued.
     std::sort(pending_adds_.begin(), pending_adds_.end());

@@ -155,6 +155,19 @@ public:
     // The current box (start of the coming step); nullptr for an unknown id.
     const Aabb* box(uint32_t id) const;
 
+    // Appends to `out` the id of every object present (added, not removed) whose current box
+    // overlaps q (closed boxes), each once, in no particular order. Uses the broad phase's own
+    // structure where it has one for this (the space-time sweep in regions: the columns q
+    // touches); the others scan every object. q: finite, min <= max.
+    void query_box(const Aabb& q, std::vector<uint32_t>& out) const { on_query_box(q, out); }
+    // Size of the structure's spatial cells (0: none). A long thin query is best split into
+    // pieces about this long on y and z (a query visits every column its box touches).
+    virtual double query_cell_size() const { return 0; }
+    // Changes whether the object is static (never moved; pairs of two static objects are never
+    // reported). False, changing nothing, for an id not present, or when making static an object
+    // given a move for the coming step.
+    bool set_static(uint32_t id, bool is_static);
+
     // Debug check of the internal structure against brute force at the current moment; the
     // empty string if it holds, otherwise a description of the first fault. O(n^2).
     virtual std::string check_invariants() const;
@@ -181,6 +194,11 @@ protected:
     // Fills pairs_ (any order, duplicates allowed: the base keeps the earliest) and the
     // counters; records still hold the start boxes and moving_ the moved ids (deduplicated).
     virtual void on_step() = 0;
+    // query_box's work: by default every record.
+    virtual void on_query_box(const Aabb& q, std::vector<uint32_t>& out) const;
+    // A present object's static flag has just changed (records hold the new one): by default
+    // nothing (the listed broad phases read the flag each step).
+    virtual void on_static_change(uint32_t id) { (void)id; }
 
     // Objects present in the structure, by id: Live or PendingRemove. Brute force over them.
     void collect_present(std::vector<uint32_t>& out) const;

@@ -171,6 +171,26 @@ void EndpointSap::on_teleport(uint32_t id, const Aabb& old_box) {
     set_spans(id, b, b);
 }
 
+void EndpointSap::on_static_change(uint32_t id) {
+    const bool now_static = records_[id].is_static;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (bool mx : {false, true}) {
+            Endpoint& e = axes_[static_cast<std::size_t>(axis)][ep(id, axis, mx)];
+            e.tag = (e.tag & ~2u) | (now_static ? 2u : 0u);
+        }
+    }
+    // Overlapping pairs with static objects leave the set (or join it) with the flag.
+    for (uint32_t other = 0; other < records_.size(); ++other) {
+        if (other == id || records_[other].state != State::Live || !records_[other].is_static) continue;
+        if (!(overlap_on_axis(id, other, 0) && overlap_on_axis(id, other, 1) && overlap_on_axis(id, other, 2)))
+            continue;
+        if (now_static)
+            overlaps_.erase(pair_key(id, other));
+        else
+            overlaps_.insert(pair_key(id, other));
+    }
+}
+
 std::string EndpointSap::check_invariants() const {
     std::string base = BroadPhase::check_invariants();
     if (!base.empty()) return base;

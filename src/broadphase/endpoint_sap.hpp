@@ -58,6 +58,8 @@ protected:
 
     void on_flush() override;
     void on_teleport(uint32_t id, const Aabb& old_box) override;
+    // Rewrites the owner's tags and its pairs with static objects: O(n) (a scan of the others).
+    void on_static_change(uint32_t id) override;
 
     uint32_t& ep(uint32_t id, int axis, bool max) {
         return ep_[id][2 * static_cast<std::size_t>(axis) + (max ? 1u : 0u)];

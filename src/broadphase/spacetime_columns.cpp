@@ -277,4 +277,51 @@ void SpacetimeSap::query_column(const Column& c, uint32_t id) {
     }
 }
 
+// Objects not yet flushed are in no column, large objects in large_; the rest are found in the
+// columns the query's (y, z) cells cover (every column when those outnumber the columns there are).
+// An object in several of them is reported from the first one it shares with the query.
+void SpacetimeSap::on_query_box(const Aabb& q, std::vector<uint32_t>& out) const {
+    const std::size_t from = out.size();
+    for (uint32_t id : pending_adds_) {
+        if (records_[id].state == State::PendingAdd && boxes_overlap(records_[id].box, q)) out.push_back(id);
+    }
+    // pending_adds_ may name an id twice (added, removed and added again before a flush).
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());
+    out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(from), out.end()), out.end());
+    for (uint32_t id : large_) {
+        if (records_[id].state == State::Live && boxes_overlap(records_[id].box, q)) out.push_back(id);
+    }
+    if (column_count_ == 0) return;
+    const int32_t y0 = cell(q.min.y), y1 = cell(q.max.y), z0 = cell(q.min.z), z1 = cell(q.max.z);
+    const int64_t cells = (int64_t{y1} - y0 + 1) * (int64_t{z1} - z0 + 1);
+    if (cells > static_cast<int64_t>(column_count_)) {
+        for (const auto& [key, index] : column_index_) {
+            if (key == PairSet::kEmpty) continue;
+            const auto cy = static_cast<int32_t>(static_cast<int64_t>(key >> 32) - 1073741824);
+            const auto cz = static_cast<int32_t>(static_cast<int64_t>(key & 0xffffffffu) - 1073741824);
+            if (cy >= y0 && cy <= y1 && cz >= z0 && cz <= z1) query_column_box(columns_[index], cy, cz, y0, z0, q, out);
+        }
+        return;
+    }
+    for (int32_t cy = y0; cy <= y1; ++cy)
+        for (int32_t cz = z0; cz <= z1; ++cz) {
+            if (const Column* c = find_column(cy, cz)) query_column_box(*c, cy, cz, y0, z0, q, out);
+        }
+}
+
+void SpacetimeSap::query_column_box(const Column& c, int32_t cy, int32_t cz, int32_t y0, int32_t z0, const Aabb& q,
+                                    std::vector<uint32_t>& out) const {
+    // Entries are sorted by lo and none is longer than max_len: those reaching q start after this.
+    const double first = q.min.x - c.max_len;
+    auto it = std::lower_bound(c.entries.begin(), c.entries.end(), first,
+                               [](const Entry& e, double v) { return e.lo < v; });
+    for (; it != c.entries.end() && it->lo <= q.max.x; ++it) {
+        if (it->hi < q.min.x) continue;
+        const uint32_t id = it->id;
+        const Member& m = members_[id];
+        if (cy != std::max(m.y0, y0) || cz != std::max(m.z0, z0)) continue;
+        if (records_[id].state == State::Live && boxes_overlap(records_[id].box, q)) out.push_back(id);
+    }
+}
+
 }  // namespace kairos::broadphase_detail

@@ -34,6 +34,7 @@ class SpacetimeSap final : public BroadPhase {
 public:
     SpacetimeSap() : BroadPhase(BroadPhaseKind::SpacetimeSap) {}
     std::string check_invariants() const override;
+    double query_cell_size() const override { return cell_size_; }
 
     static constexpr int64_t kMaxColumns = 64;
 
@@ -85,6 +86,11 @@ private:
     void on_flush() override;
     void on_teleport(uint32_t id, const Aabb& old_box) override;
     void on_step() override;
+    void on_query_box(const Aabb& q, std::vector<uint32_t>& out) const override;
+    void on_static_change(uint32_t id) override { on_teleport(id, records_[id].box); }
+    // query_box in one column (cell cy, cz) of a query whose cells start at y0, z0.
+    void query_column_box(const Column& c, int32_t cy, int32_t cz, int32_t y0, int32_t z0, const Aabb& q,
+                          std::vector<uint32_t>& out) const;
 
     int32_t cell(double v) const;
     static uint64_t column_key(int32_t cy, int32_t cz);

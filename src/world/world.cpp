@@ -146,11 +146,14 @@ bool World::move(uint64_t id, const Pose& end) {
 bool World::set_static(uint64_t id, bool is_static) {
     Object* o = find_mutable(id);
     if (o == nullptr) return false;
-    o->is_static = is_static;
     if (is_static && o->moving) {  // its slot may stay in moved_: the step skips still objects
         o->end = o->pose;
         o->moving = false;
     }
+    // The broad phase keeps pairs of two static objects out of its per-step work. Its moves are
+    // given only inside step(), so it has none pending here and cannot refuse.
+    broad_->set_static(index_of(id), is_static);
+    o->is_static = is_static;
     return true;
 }
 
@@ -169,29 +172,29 @@ bool World::set_filter(uint64_t id, const Filter& filter) {
 // its end shape grown by that disk (turning back from the end); and within the ball of radius
 // sqrt(rho^2 + h^2) (h the extent along the axis). The box of the intersection of the three,
 // carried along by the origin's linear motion, holds the shape throughout.
-World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) const {
-    const Motion motion(o.pose, o.end);
+World::Sweep World::sweep_of(const Shape& shape, const Pose& pose, const Pose& end, const Aabb* box_now,
+                             Aabb* out_start, Aabb* out_end) const {
+    const Motion motion(pose, end);
     Sweep s;
-    s.start = rigid(o.pose);
+    s.start = rigid(pose);
     s.translation = motion.linear();
     // The same orientation (q or -q) is a translation: Motion reads no turn (same_rotation).
     if (!motion.rotates()) {
-        // A box left loose by an earlier turn shrinks to the pose first.
-        *out_start = o.loose ? tight_box(*o.shape, o.pose, {}) : o.box;
-        *out_end = tight_box(*o.shape, o.end, s.translation);
+        *out_start = box_now != nullptr ? *box_now : tight_box(shape, pose, {});
+        *out_end = tight_box(shape, end, s.translation);
         return s;
     }
     s.rotates = true;
     s.axis = motion.axis();
     const Vec3 local_axis = s.start.to_local_direction(s.axis);
-    const double rho = extreme_radius(*o.shape, local_axis);
+    const double rho = extreme_radius(shape, local_axis);
     s.disk = motion.disk_radius(rho, 0, 1);
     const double h =
-        std::fmax(dot(local_axis, support(*o.shape, local_axis)), -dot(local_axis, support(*o.shape, -local_axis)));
+        std::fmax(dot(local_axis, support(shape, local_axis)), -dot(local_axis, support(shape, -local_axis)));
     const double ball = std::sqrt(rho * rho + h * h);
     Aabb rel0, rel1;
-    bounds(*o.shape, Transform{s.start.rotation, {}}, rel0.min, rel0.max);
-    bounds(*o.shape, Transform{to_matrix(o.end.orientation), {}}, rel1.min, rel1.max);
+    bounds(shape, Transform{s.start.rotation, {}}, rel0.min, rel0.max);
+    bounds(shape, Transform{to_matrix(end.orientation), {}}, rel1.min, rel1.max);
     Aabb rel;
     for (int k = 0; k < 3; ++k) {
         // The disk's half extent along world axis k.
@@ -200,12 +203,12 @@ World::Sweep World::sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) co
         rel.max[k] = std::fmin(ball, std::fmin(rel0.max[k], rel1.max[k]) + e);
         if (!(rel.min[k] <= rel.max[k])) rel.min[k] = rel.max[k] = 0.5 * (rel.min[k] + rel.max[k]);  // rounding
     }
-    const Aabb start = shifted(rel, o.pose.position);
-    const Aabb end = shifted(rel, o.end.position);
-    const double m = box_margin(start, settings_.tolerance) + box_margin(end, settings_.tolerance) +
+    const Aabb box0 = shifted(rel, pose.position);
+    const Aabb box1 = shifted(rel, end.position);
+    const double m = box_margin(box0, settings_.tolerance) + box_margin(box1, settings_.tolerance) +
                      settings_.tolerance * max_abs(s.translation);
-    *out_start = grown(start, m);
-    *out_end = grown(end, m);
+    *out_start = grown(box0, m);
+    *out_end = grown(box1, m);
     return s;
 }
 
@@ -244,7 +247,8 @@ void World::step() {
             continue;
         }
         Aabb start, end;
-        sweeps_[index] = sweep_of(o, &start, &end);
+        // A box left loose by an earlier turn shrinks to the pose first.
+        sweeps_[index] = sweep_of(*o.shape, o.pose, o.end, o.loose ? nullptr : &o.box, &start, &end);
         swept_[index] = 1;
         moved_[w++] = index;
         if (!(start.min == o.box.min && start.max == o.box.max)) {
@@ -373,7 +377,7 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
 
         CastResult r;
         if (!sa.rotates && !sb.rotates) {
-            r = shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
+            r = kairos::shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
         } else {
             // A turn: the motion cast (conservative advancement, docs/algorithms.md §4). It takes no
             // cached axis, so the cached one serves only the separating-plane test above.

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "broadphase/broadphase.hpp"
@@ -55,6 +56,16 @@ inline bool filters_collide(const Filter& a, const Filter& b) {
     if (a.group != 0 && a.group == b.group) return a.group > 0;
     return (a.category_bits & b.mask_bits) != 0 && (b.category_bits & a.mask_bits) != 0;
 }
+
+// The earliest hit of a world query (World::ray_cast, World::shape_cast). World frame.
+struct WorldHit {
+    bool hit = false;
+    uint64_t id = 0, user_data = 0;
+    double toi = 1;  // fraction of the query's motion in [0, 1]
+    Vec3 point;      // the contact at toi
+    Vec3 normal;     // unit, outward from the object hit
+    uint32_t casts = 0;  // pair casts run (work, for tests and benchmarks)
+};
 
 struct WorldSettings {
     BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
@@ -121,6 +132,20 @@ public:
     // clears the pending moves. Fills contacts, pairs and counters.
     void step();
 
+    // Queries at the current poses (pending moves are not applied). filter: nullptr for every
+    // object, else the objects whose filter collides with it (filters_collide). They change
+    // nothing and share no scratch: several threads may query while no thread changes the world.
+    // Ids of the objects whose tight bounding box at the pose overlaps q (closed, finite), in
+    // increasing order, replacing out's contents.
+    void query_box(const Aabb& q, const Filter* filter, std::vector<uint64_t>& out) const;
+    // The earliest object hit by the ray origin + t translation, t in [0, 1] (kairos::ray_cast
+    // with the world's settings); ties: the smaller id.
+    WorldHit ray_cast(Vec3 origin, Vec3 translation, const Filter* filter) const;
+    // The earliest object `shape` hits following start -> end (a translation: shape_cast; a turn:
+    // motion_cast), the objects standing still; ties: the smaller id.
+    WorldHit shape_cast(const Shape& shape, const Pose& start, const Pose& end, const Filter* filter, double tolerance,
+                        uint32_t max_iterations) const;
+
     size_t live_count() const { return live_; }
     const std::vector<Object>& objects() const { return objects_; }
     const BroadPhase& broad_phase() const { return *broad_; }
@@ -151,7 +176,14 @@ private:
 
     Aabb tight_box(const Shape& shape, const Pose& pose, Vec3 translation) const;
     Object* find_mutable(uint64_t id);
-    Sweep sweep_of(const Object& o, Aabb* out_start, Aabb* out_end) const;
+    // The motion pose -> end of a shape and its boxes at t = 0 and t = 1. box_now: the box it
+    // has at `pose` when known (a translation then keeps it as the start box), else nullptr.
+    Sweep sweep_of(const Shape& shape, const Pose& pose, const Pose& end, const Aabb* box_now, Aabb* out_start,
+                   Aabb* out_end) const;
+    // The slots whose broad-phase box the box swept linearly over s meets, and the filter admits,
+    // as (first time they meet, slot), sorted: a lower bound on the time of any contact.
+    void sweep_candidates(const SweptAabb& s, const Filter* filter,
+                          std::vector<std::pair<double, uint32_t>>& out) const;
     void narrow_phase(const std::vector<BroadPhasePair>& bp_pairs);
 
     WorldSettings settings_;

@@ -47,7 +47,8 @@ static void use_table(const kairos_api* api) {
     CHECK(api->world_step_stats != NULL); /* the last entry of ABI version 1 */
     CHECK(api->shape_triangle != NULL);
     CHECK(api->signed_distance != NULL);
-    CHECK(api->world_get_user_data != NULL);  /* the last entry of ABI version 2 */
+    CHECK(api->world_get_user_data != NULL);
+    CHECK(api->world_query_box != NULL);  /* the last entry of ABI version 2 */
 
     half.x = 1.0;
     half.y = 2.0;

@@ -86,6 +86,13 @@ PIN_SIZE(kairos_filter, 12);
 PIN_OFFSET(kairos_filter, category_bits, 0);
 PIN_OFFSET(kairos_filter, mask_bits, 4);
 PIN_OFFSET(kairos_filter, group, 8);
+PIN_SIZE(kairos_world_hit, 80);
+PIN_OFFSET(kairos_world_hit, hit, 0);
+PIN_OFFSET(kairos_world_hit, id, 8);
+PIN_OFFSET(kairos_world_hit, user_data, 16);
+PIN_OFFSET(kairos_world_hit, toi, 24);
+PIN_OFFSET(kairos_world_hit, point, 32);
+PIN_OFFSET(kairos_world_hit, normal, 56);
 
 PIN_SIZE(kairos_contact, 88);
 PIN_OFFSET(kairos_contact, a, 0);
@@ -155,8 +162,11 @@ PIN_API(world_set_filter, 38);
 PIN_API(world_set_static, 39);
 PIN_API(world_get_pose, 40);
 PIN_API(world_get_user_data, 41);
-/* The size of ABI version 2's table: 42 entries. A new ABI version appends and grows this. */
-PIN_SIZE(kairos_api, 8 + 8 * 42);
+PIN_API(world_ray_cast, 42);
+PIN_API(world_shape_cast, 43);
+PIN_API(world_query_box, 44);
+/* The size of ABI version 2's table: 45 entries. A new ABI version appends and grows this. */
+PIN_SIZE(kairos_api, 8 + 8 * 45);
 PIN(KAIROS_ABI_VERSION == 2u);
 
 /* ---- Constants are ABI too: never renumbered -------------------------------------------------- */
@@ -209,6 +219,7 @@ static const kairos_api kairos_layout_table_types = {
     kairos_world_contacts, kairos_world_overlaps, kairos_step_stats_init, kairos_world_step_stats,
     kairos_shape_triangle, kairos_signed_distance,
     kairos_world_set_filter, kairos_world_set_static, kairos_world_get_pose, kairos_world_get_user_data,
+    kairos_world_ray_cast, kairos_world_shape_cast, kairos_world_query_box,
 };
 
 /* Referenced so that the table above is not an unused variable under -Wall. */

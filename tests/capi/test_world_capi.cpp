@@ -543,3 +543,89 @@ TEST_F(WorldFixture, AReusedSlotStartsWithTheDefaultFilterAndNotStatic) {
     EXPECT_EQ(kairos_world_move(w, a, &there), KAIROS_OK);  // not static
     kairos_world_destroy(w);
 }
+
+// World queries through the C API: bad input names the argument and writes nothing; a small box
+// array gets the first ids and the full count.
+TEST_F(WorldFixture, WorldQueriesRefuseBadInputAndWriteNothing) {
+    kairos_world* w = nullptr;
+    ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
+    std::vector<kairos_object_id> ids(5);
+    for (int i = 0; i < 5; ++i) {
+        const kairos_pose p = at(2.0 * i, 0, 0);
+        ASSERT_EQ(kairos_world_add(w, cube, &p, 10 + static_cast<uint64_t>(i), &ids[static_cast<size_t>(i)]),
+                  KAIROS_OK);
+    }
+    kairos_world_hit sentinel;
+    std::memset(&sentinel, 0x5A, sizeof sentinel);
+    kairos_world_hit hit = sentinel;
+    const double nan = std::nan("");
+    auto untouched = [&] { return std::memcmp(&hit, &sentinel, sizeof hit) == 0; };
+    auto error_names = [](const char* what) { return std::strstr(kairos_last_error(), what) != nullptr; };
+
+    EXPECT_EQ(kairos_world_ray_cast(nullptr, {0, 0, 0}, {1, 0, 0}, nullptr, &hit), KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_TRUE(error_names("w"));
+    EXPECT_EQ(kairos_world_ray_cast(w, {nan, 0, 0}, {1, 0, 0}, nullptr, &hit), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(error_names("origin")) << kairos_last_error();
+    EXPECT_EQ(kairos_world_ray_cast(w, {0, 0, 0}, {1e300, 0, 0}, nullptr, &hit), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(error_names("translation")) << kairos_last_error();
+    EXPECT_EQ(kairos_world_ray_cast(w, {0, 0, 0}, {1, 0, 0}, nullptr, nullptr), KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_TRUE(error_names("out"));
+    EXPECT_TRUE(untouched());
+
+    kairos_motion m{at(-3, 0, 0), at(10, 0, 0)};
+    EXPECT_EQ(kairos_world_shape_cast(w, nullptr, &m, nullptr, nullptr, &hit), KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_TRUE(error_names("s"));
+    EXPECT_EQ(kairos_world_shape_cast(w, bullet, nullptr, nullptr, nullptr, &hit), KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_TRUE(error_names("motion"));
+    kairos_motion bad = m;
+    bad.end.orientation = {0, 0, 0, 2};
+    EXPECT_EQ(kairos_world_shape_cast(w, bullet, &bad, nullptr, nullptr, &hit), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(error_names("motion->end")) << kairos_last_error();
+    kairos_query_settings qs;
+    kairos_query_settings_init(&qs);
+    qs.tolerance = 2;
+    EXPECT_EQ(kairos_world_shape_cast(w, bullet, &m, nullptr, &qs, &hit), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(error_names("settings")) << kairos_last_error();
+    EXPECT_TRUE(untouched());
+
+    // The bullet (radius 0.1) from x = -3 to 10 meets the first cube's face x = -0.5 at toi 2.4 / 13.
+    ASSERT_EQ(kairos_world_shape_cast(w, bullet, &m, nullptr, nullptr, &hit), KAIROS_OK) << kairos_last_error();
+    EXPECT_EQ(hit.hit, 1);
+    EXPECT_EQ(hit.id, ids[0]);
+    EXPECT_EQ(hit.user_data, 10u);
+    EXPECT_NEAR(hit.toi, 2.4 / 13, 1e-9);
+    EXPECT_NEAR(hit.normal.x, -1, 1e-9);
+    // A miss: hit 0, id 0, toi 1.
+    ASSERT_EQ(kairos_world_ray_cast(w, {0, 5, 0}, {1, 0, 0}, nullptr, &hit), KAIROS_OK);
+    EXPECT_EQ(hit.hit, 0);
+    EXPECT_EQ(hit.id, 0u);
+    EXPECT_EQ(hit.toi, 1.0);
+
+    // query_box: the box from x = 1 to 7 holds cubes 1, 2, 3 (centred at 2, 4, 6) and touches no other.
+    std::vector<kairos_object_id> found(2, 77);
+    size_t count = 99;
+    ASSERT_EQ(kairos_world_query_box(w, {1, -1, -1}, {7, 1, 1}, nullptr, found.data(), found.size(), &count),
+              KAIROS_OK);
+    EXPECT_EQ(count, 3u);
+    EXPECT_EQ(found[0], ids[1]);
+    EXPECT_EQ(found[1], ids[2]);
+    count = 99;
+    EXPECT_EQ(kairos_world_query_box(w, {1, -1, -1}, {7, 1, 1}, nullptr, nullptr, 3, &count),
+              KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_TRUE(error_names("ids"));
+    EXPECT_EQ(kairos_world_query_box(w, {1, -1, nan}, {7, 1, 1}, nullptr, nullptr, 0, &count),
+              KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(error_names("min"));
+    EXPECT_EQ(kairos_world_query_box(w, {1, 2, -1}, {7, 1, 1}, nullptr, nullptr, 0, &count),
+              KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(error_names("min.y"));
+    EXPECT_EQ(kairos_world_query_box(w, {1, -1, -1}, {7, 1, 1}, nullptr, nullptr, 0, nullptr),
+              KAIROS_ERROR_NULL_ARGUMENT);
+    EXPECT_TRUE(error_names("count"));
+    EXPECT_EQ(count, 99u);
+    // A filter whose mask sees no category finds nothing.
+    const kairos_filter blind{1, 0, 0};
+    ASSERT_EQ(kairos_world_query_box(w, {-10, -10, -10}, {10, 10, 10}, &blind, nullptr, 0, &count), KAIROS_OK);
+    EXPECT_EQ(count, 0u);
+    kairos_world_destroy(w);
+}

@@ -92,6 +92,16 @@ class StepStats(ctypes.Structure):
                 ("narrow_phase_seconds", ctypes.c_double)]
 
 
+class Filter(ctypes.Structure):
+    _fields_ = [("category_bits", ctypes.c_uint32), ("mask_bits", ctypes.c_uint32),
+                ("group", ctypes.c_int32)]
+
+
+class WorldHit(ctypes.Structure):
+    _fields_ = [("hit", ctypes.c_int32), ("id", ctypes.c_uint64), ("user_data", ctypes.c_uint64),
+                ("toi", ctypes.c_double), ("point", Vec3), ("normal", Vec3)]
+
+
 ShapeP = ctypes.c_void_p  # kairos_shape* is opaque
 WorldP = ctypes.c_void_p
 Status = ctypes.c_int32
@@ -127,6 +137,20 @@ def load(path):
                                       ctypes.POINTER(ctypes.c_uint64)]),
         "kairos_world_remove": (Status, [WorldP, ctypes.c_uint64]),
         "kairos_step_stats_init": (None, [ctypes.POINTER(StepStats)]),
+        "kairos_world_step": (Status, [WorldP]),
+        "kairos_world_set_filter": (Status, [WorldP, ctypes.c_uint64, ctypes.POINTER(Filter)]),
+        "kairos_world_set_static": (Status, [WorldP, ctypes.c_uint64, ctypes.c_int32]),
+        "kairos_world_get_pose": (Status, [WorldP, ctypes.c_uint64, ctypes.POINTER(Pose)]),
+        "kairos_world_get_user_data": (Status, [WorldP, ctypes.c_uint64,
+                                                ctypes.POINTER(ctypes.c_uint64)]),
+        "kairos_world_ray_cast": (Status, [WorldP, Vec3, Vec3, ctypes.POINTER(Filter),
+                                           ctypes.POINTER(WorldHit)]),
+        "kairos_world_shape_cast": (Status, [WorldP, ShapeP, ctypes.POINTER(Motion),
+                                             ctypes.POINTER(Filter), ctypes.POINTER(QuerySettings),
+                                             ctypes.POINTER(WorldHit)]),
+        "kairos_world_query_box": (Status, [WorldP, Vec3, Vec3, ctypes.POINTER(Filter),
+                                            ctypes.POINTER(ctypes.c_uint64), ctypes.c_size_t,
+                                            ctypes.POINTER(ctypes.c_size_t)]),
     }
     for name, (restype, argtypes) in sig.items():
         fn = getattr(lib, name)
@@ -169,7 +193,7 @@ class KairosCtypesTest(unittest.TestCase):
         # The same numbers as tests/abi/layout.c (x86-64 LP64).
         sizes = {Vec3: 24, Quat: 32, Pose: 56, Motion: 112, QuerySettings: 24,
                  DistanceResult: 96, CastResult: 72, WorldSettings: 32, Contact: 88,
-                 StepStats: 64}
+                 StepStats: 64, Filter: 12, WorldHit: 80}
         for struct, size in sizes.items():
             self.assertEqual(ctypes.sizeof(struct), size, struct.__name__)
         self.assertEqual(WorldSettings.query.offset, 8)
@@ -319,6 +343,69 @@ class KairosCtypesTest(unittest.TestCase):
         self.assertNotEqual(object_id.value, 0)
         self.assertEqual(lib.kairos_world_remove(world, object_id), KAIROS_OK)
         self.assertEqual(lib.kairos_world_remove(world, object_id), KAIROS_ERROR_STALE_ID)
+
+    def test_world_objects_and_queries(self):
+        lib = self.lib
+        world = WorldP()
+        self.assertEqual(lib.kairos_world_create(None, ctypes.byref(world)), KAIROS_OK, self.last_error())
+        self.addCleanup(lib.kairos_world_destroy, world)
+        box = self.make(lib.kairos_shape_box, Vec3(1.0, 1.0, 1.0))
+        ids = []
+        for i, x in enumerate((5.0, 10.0)):  # unit boxes centred at x = 5 and x = 10
+            object_id = ctypes.c_uint64(0)
+            pose = identity_pose(x)
+            self.assertEqual(lib.kairos_world_add(world, box, ctypes.byref(pose), 100 + i,
+                                                  ctypes.byref(object_id)), KAIROS_OK, self.last_error())
+            ids.append(object_id.value)
+        self.assertEqual(lib.kairos_world_set_static(world, ids[1], 1), KAIROS_OK, self.last_error())
+        self.assertEqual(lib.kairos_world_step(world), KAIROS_OK, self.last_error())
+        pose = Pose()
+        self.assertEqual(lib.kairos_world_get_pose(world, ids[1], ctypes.byref(pose)), KAIROS_OK)
+        self.assertVec(pose.position, (10.0, 0.0, 0.0))
+        user = ctypes.c_uint64(0)
+        self.assertEqual(lib.kairos_world_get_user_data(world, ids[0], ctypes.byref(user)), KAIROS_OK)
+        self.assertEqual(user.value, 100)
+
+        # The ray along +x from the origin meets the first box's face x = 4 at toi 0.4.
+        hit = WorldHit()
+        self.assertEqual(lib.kairos_world_ray_cast(world, Vec3(0, 0, 0), Vec3(10, 0, 0), None,
+                                                   ctypes.byref(hit)), KAIROS_OK, self.last_error())
+        self.assertEqual((hit.hit, hit.id, hit.user_data), (1, ids[0], 100))
+        self.assertAlmostEqual(hit.toi, 0.4, delta=1e-9)
+        self.assertVec(hit.normal, (-1.0, 0.0, 0.0), 1e-9)
+        # A filter whose mask leaves out the first box's category sees only the second (face x = 9).
+        self.assertEqual(lib.kairos_world_set_filter(world, ids[0], ctypes.byref(Filter(2, 0xFFFFFFFF, 0))),
+                         KAIROS_OK, self.last_error())
+        only_one = Filter(1, 1, 0)
+        self.assertEqual(lib.kairos_world_ray_cast(world, Vec3(0, 0, 0), Vec3(10, 0, 0),
+                                                   ctypes.byref(only_one), ctypes.byref(hit)), KAIROS_OK)
+        self.assertEqual((hit.hit, hit.id), (1, ids[1]))
+        self.assertAlmostEqual(hit.toi, 0.9, delta=1e-9)
+
+        # A unit sphere swept from the origin to x = 10 touches the first box's face at x = 3.
+        sphere = self.make(lib.kairos_shape_sphere, 1.0)
+        motion = Motion(identity_pose(), identity_pose(10.0))
+        self.assertEqual(lib.kairos_world_shape_cast(world, sphere, ctypes.byref(motion), None, None,
+                                                     ctypes.byref(hit)), KAIROS_OK, self.last_error())
+        self.assertEqual((hit.hit, hit.id), (1, ids[0]))
+        self.assertAlmostEqual(hit.toi, 0.3, delta=1e-9)
+        self.assertVec(hit.normal, (-1.0, 0.0, 0.0), 1e-9)
+
+        found = (ctypes.c_uint64 * 4)()
+        count = ctypes.c_size_t(0)
+        self.assertEqual(lib.kairos_world_query_box(world, Vec3(3.5, -1, -1), Vec3(9.5, 1, 1), None,
+                                                    found, 4, ctypes.byref(count)), KAIROS_OK, self.last_error())
+        self.assertEqual(count.value, 2)
+        self.assertEqual(sorted(found[:2]), sorted(ids))
+        # Capacity 0: only the count. A box with min above max is refused, the count untouched.
+        self.assertEqual(lib.kairos_world_query_box(world, Vec3(3.5, -1, -1), Vec3(4.5, 1, 1), None,
+                                                    None, 0, ctypes.byref(count)), KAIROS_OK)
+        self.assertEqual(count.value, 1)
+        self.assertEqual(lib.kairos_world_query_box(world, Vec3(1, 0, 0), Vec3(0, 1, 1), None,
+                                                    None, 0, ctypes.byref(count)),
+                         KAIROS_ERROR_INVALID_ARGUMENT)
+        self.assertIn("min.x", self.last_error())
+        self.assertEqual(count.value, 1)
 
     def test_distance_when_implemented(self):
         a = self.make(self.lib.kairos_shape_sphere, 1.0)

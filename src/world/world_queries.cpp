@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+// World queries (see world.hpp): a box, a ray and a cast shape against the objects at their
+// current poses, through the broad phase's structure.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "casts/cast.hpp"
+#include "motion/motion.hpp"
+#include "motion/motion_cast.hpp"
+#include "world/world.hpp"
+
+namespace kairos {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+Transform rigid(const Pose& s) { return make_transform(s.position, s.orientation); }
+
+Vec3 lerp(Vec3 a, Vec3 b, double t) { return (1 - t) * a + t * b; }
+
+// The box swept over [t0, t1] of s (each coordinate linear in t: the union of the two ends),
+// grown by a few ulps for the rounding of the interpolation.
+Aabb piece(const SweptAabb& s, double t0, double t1) {
+    const Vec3 lo0 = lerp(s.start.min, s.end.min, t0), lo1 = lerp(s.start.min, s.end.min, t1);
+    const Vec3 hi0 = lerp(s.start.max, s.end.max, t0), hi1 = lerp(s.start.max, s.end.max, t1);
+    Aabb b{cwise_min(lo0, lo1), cwise_max(hi0, hi1)};
+    const double m = 4 * kEps * std::fmax(max_abs(b.min), max_abs(b.max));
+    return {b.min - Vec3{m, m, m}, b.max + Vec3{m, m, m}};
+}
+
+// Keeps the earlier hit; at one toi the smaller id.
+void keep_earliest(WorldHit& best, const WorldHit& h) {
+    if (!h.hit) return;
+    if (!best.hit || h.toi < best.toi || (h.toi == best.toi && h.id < best.id)) {
+        const uint32_t casts = best.casts;
+        best = h;
+        best.casts = casts;
+    }
+}
+
+}  // namespace
+
+void World::sweep_candidates(const SweptAabb& s, const Filter* filter,
+                             std::vector<std::pair<double, uint32_t>>& out) const {
+    out.clear();
+    // The broad phase's columns run along x: a query visits every column its box touches on y
+    // and z, so a long oblique sweep is split into pieces about a column wide there.
+    const double cell = broad_->query_cell_size();
+    std::size_t pieces = 1;
+    if (cell > 0) {
+        double travel = 0;
+        for (int k = 1; k < 3; ++k)
+            travel = std::fmax(travel, std::fmax(std::fabs(s.end.min[k] - s.start.min[k]),
+                                                 std::fabs(s.end.max[k] - s.start.max[k])));
+        const double n = std::ceil(travel / cell);
+        if (n > 1) pieces = n < 1024 ? static_cast<std::size_t>(n) : 1024;
+    }
+    std::vector<uint32_t> slots;
+    for (std::size_t i = 0; i < pieces; ++i) {
+        const double t0 = static_cast<double>(i) / static_cast<double>(pieces);
+        const double t1 = i + 1 == pieces ? 1.0 : static_cast<double>(i + 1) / static_cast<double>(pieces);
+        broad_->query_box(piece(s, t0, t1), slots);
+    }
+    std::sort(slots.begin(), slots.end());
+    slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+    for (uint32_t slot : slots) {
+        const Object& o = objects_[slot];
+        if (!o.alive || (filter != nullptr && !filters_collide(*filter, o.filter))) continue;
+        const Aabb* box = broad_->box(slot);
+        double t = 0;
+        if (box != nullptr && first_overlap_time(s, SweptAabb{*box, *box}, &t)) out.push_back({t, slot});
+    }
+    std::sort(out.begin(), out.end());
+}
+
+void World::query_box(const Aabb& q, const Filter* filter, std::vector<uint64_t>& out) const {
+    out.clear();
+    std::vector<uint32_t> slots;
+    broad_->query_box(q, slots);
+    for (uint32_t slot : slots) {
+        const Object& o = objects_[slot];
+        if (!o.alive || (filter != nullptr && !filters_collide(*filter, o.filter))) continue;
+        Aabb b;
+        bounds(*o.shape, rigid(o.pose), b.min, b.max);
+        if (boxes_overlap(b, q)) out.push_back(make_id(slot, o.generation));
+    }
+    std::sort(out.begin(), out.end());
+}
+
+WorldHit World::ray_cast(Vec3 origin, Vec3 translation, const Filter* filter) const {
+    const Vec3 end = origin + translation;
+    std::vector<std::pair<double, uint32_t>> candidates;
+    sweep_candidates({{origin, origin}, {end, end}}, filter, candidates);
+    WorldHit best;
+    for (const auto& [t, slot] : candidates) {
+        if (best.hit && t > best.toi) break;  // boxes hold their objects: no later box hits earlier
+        const Object& o = objects_[slot];
+        const CastResult r = kairos::ray_cast(*o.shape, rigid(o.pose), origin, translation, settings_.tolerance,
+                                              settings_.max_iterations);
+        ++best.casts;
+        if (r.hit)
+            keep_earliest(best, {true, make_id(slot, o.generation), o.user_data, r.toi, r.point, r.normal, 0});
+    }
+    return best;
+}
+
+WorldHit World::shape_cast(const Shape& shape, const Pose& start, const Pose& end, const Filter* filter,
+                           double tolerance, uint32_t max_iterations) const {
+    SweptAabb swept;
+    const Sweep sw = sweep_of(shape, start, end, nullptr, &swept.start, &swept.end);
+    std::vector<std::pair<double, uint32_t>> candidates;
+    sweep_candidates(swept, filter, candidates);
+    const Motion motion(start, end);
+    WorldHit best;
+    for (const auto& [t, slot] : candidates) {
+        if (best.hit && t > best.toi) break;
+        const Object& o = objects_[slot];
+        const Transform pose = rigid(o.pose);
+        const CastResult r =
+            sw.rotates ? motion_cast(shape, motion, *o.shape, Motion(o.pose, o.pose), tolerance, max_iterations)
+                       : kairos::shape_cast(shape, sw.start, sw.translation, *o.shape, pose, {}, tolerance,
+                                            max_iterations);
+        ++best.casts;
+        // The casts' normals point from the cast shape toward the object.
+        if (r.hit)
+            keep_earliest(best, {true, make_id(slot, o.generation), o.user_data, r.toi, r.point, -r.normal, 0});
+    }
+    return best;
+}
+
+}  // namespace kairos
