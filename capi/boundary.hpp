@@ -13,6 +13,10 @@
 #include "math/math.hpp"
 #include "shapes/shape.hpp"
 
+// kairos_world_settings_init as 0.1 had it (capi/world.cpp): exported only as
+// kairos_world_settings_init@KAIROS_0, and in kairos_get_api's version-1 table.
+extern "C" KAIROS_API void world_settings_init_0_1(kairos_world_settings* s);
+
 namespace kairos::capi {
 
 // A rejected call: thrown by the checks below, caught by `guarded`. The message is already in

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Library information: version, status names, last error, and the dlopen function table.
+#include <cstddef>
+
 #include "boundary.hpp"
 
 namespace kairos::capi {
@@ -92,6 +94,14 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         kairos_world_shape_cast,
         kairos_world_query_box,
     };
+    // Version 1's callers know the 0.1 table and the 0.1 kairos_world_settings: their table ends
+    // before shape_triangle and initialises the settings as 0.1 did (no write past its end).
+    static const kairos_api table_v1 = [] {
+        kairos_api t = table;
+        t.struct_size = offsetof(kairos_api, shape_triangle);
+        t.world_settings_init = world_settings_init_0_1;
+        return t;
+    }();
     const char* const fn = __func__;
     return kairos::capi::guarded(fn, [&] {
         using kairos::capi::fail;
@@ -99,7 +109,7 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         if (abi_version < 1 || abi_version > KAIROS_ABI_VERSION)
             fail(KAIROS_ERROR_UNSUPPORTED_VERSION, fn, "abi_version %u is not provided (this library provides 1 to %u)",
                  abi_version, KAIROS_ABI_VERSION);
-        *out = &table;
+        *out = abi_version == 1 ? &table_v1 : &table;
     });
 }
 

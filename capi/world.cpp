@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // C API world: the handle, object bookkeeping, step, contacts, overlaps and step stats.
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct kairos_world {
 namespace {
 
 Pose state_of(const BodyPose& p) { return {p.position, p.orientation}; }
+
+// The size of kairos_world_settings in 0.1 (callers built then know no more).
+constexpr uint32_t kWorldSettingsFirstSize = offsetof(kairos_world_settings, worker_count);
 
 const World::Object& live_object(const kairos_world* w, kairos_object_id id, const char* function) {
     const World::Object* o = w->core.find(id);
@@ -60,13 +64,52 @@ KAIROS_API void kairos_world_settings_init(kairos_world_settings* s) {
     kairos_query_settings_init(&s->query);
 }
 
+// The 0.1 init, kept for binaries linked against 0.1 (kairos_world_settings_init@KAIROS_0, see
+// cmake/kairos.map) and for kairos_get_api(1): their struct ends before worker_count, so only its
+// first fields are written, and struct_size says so.
+// Named outside kairos_* so that only its versioned alias is exported.
+KAIROS_API void world_settings_init_0_1(kairos_world_settings* s) {
+    if (s == nullptr) return;
+    std::memset(s, 0, kWorldSettingsFirstSize);
+    s->struct_size = kWorldSettingsFirstSize;
+    s->broad_phase = KAIROS_BROAD_PHASE_SPACETIME_SAP;
+    kairos_query_settings_init(&s->query);
+}
+__asm__(".symver world_settings_init_0_1,kairos_world_settings_init@KAIROS_0");
+
 KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, kairos_world** out) {
     const char* const fn = __func__;
     return guarded(fn, [&] {
         kairos_world_settings defaults;
         kairos_world_settings_init(&defaults);
         if (settings == nullptr) settings = &defaults;
-        require_struct_size(settings, settings->struct_size, sizeof(kairos_world_settings), fn, "settings");
+        // Callers built against 0.1 know the fields up to `query`; later fields take defaults.
+        constexpr size_t kFirstSize = kWorldSettingsFirstSize;
+        if (settings->struct_size < kFirstSize)
+            fail(KAIROS_ERROR_STRUCT_SIZE, fn,
+                 "settings->struct_size is %u, smaller than the %zu bytes of this struct's first version; call "
+                 "kairos_world_settings_init",
+                 settings->struct_size, kFirstSize);
+        require_struct_size(settings, settings->struct_size,
+                            settings->struct_size < sizeof(kairos_world_settings) ? settings->struct_size
+                                                                                  : sizeof(kairos_world_settings),
+                            fn, "settings");
+        auto has = [&](size_t offset, size_t size) { return settings->struct_size >= offset + size; };
+        const uint32_t workers =
+            has(offsetof(kairos_world_settings, worker_count), sizeof(uint32_t)) ? settings->worker_count : 0;
+        if (workers > Workers::kMaxThreads)
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "settings->worker_count is %u; at most %u", workers,
+                 Workers::kMaxThreads);
+        TaskHook hook;
+        if (has(offsetof(kairos_world_settings, task_user_context), sizeof(void*))) {
+            hook.enqueue = settings->enqueue_task;
+            hook.finish = settings->finish_task;
+            hook.user_context = settings->task_user_context;
+        }
+        if ((hook.enqueue == nullptr) != (hook.finish == nullptr))
+            fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "settings->%s is NULL while settings->%s is set; give both or neither",
+                 hook.enqueue == nullptr ? "enqueue_task" : "finish_task",
+                 hook.enqueue == nullptr ? "finish_task" : "enqueue_task");
         const int32_t bp = settings->broad_phase;
         if (bp != KAIROS_BROAD_PHASE_SPACETIME_SAP && bp != KAIROS_BROAD_PHASE_ENCAPSULATING_SAP &&
             bp != KAIROS_BROAD_PHASE_BRUTE_FORCE && bp != KAIROS_BROAD_PHASE_SPACETIME_SAP_QUEUED)
@@ -80,6 +123,8 @@ KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, ka
                                                                          : BroadPhaseKind::SpacetimeSap;
         ws.tolerance = qs.tolerance;
         ws.max_iterations = qs.max_iterations;
+        ws.worker_count = workers;
+        ws.task_hook = hook;
         *out = new kairos_world(ws);
     });
 }

@@ -333,12 +333,38 @@ KAIROS_API int32_t kairos_motion_cast(const kairos_shape* a, const kairos_motion
                                       const kairos_query_settings* settings, kairos_cast_result* out);
 
 /* ---------------------------------------------------------------------------------------------
- * World: broad phase and narrow phase over many moving objects. One thread at a time.
+ * World: broad phase and narrow phase over many moving objects. One thread at a time changes a
+ * world (its step may use more, see worker_count); the const functions may run on several threads
+ * at once while none changes it.
  */
+/* A task system hook (as Box2D v3's enqueueTask / finishTask), for an engine that runs the step's
+ * work on its own scheduler. The world calls enqueue_task with a task and item_count items; the
+ * engine runs task(begin, end, worker, task_context) over ranges [begin, end) that cover
+ * [0, item_count) exactly once (ranges of at least min_range items, but the last, are enough), on
+ * any of its threads at once, passing any worker index (the world keeps no state per worker), and
+ * returns a handle, or NULL after running every range itself. The world then calls
+ * finish_task(handle, user_context) for a non-NULL handle, which must return once every range has
+ * run. task does not throw or longjmp; ranges write disjoint results, so any order is fine. */
+typedef void kairos_task_fn(uint32_t begin, uint32_t end, uint32_t worker, void* task_context);
+typedef void* kairos_enqueue_task_fn(kairos_task_fn* task, uint32_t item_count, uint32_t min_range,
+                                     void* task_context, void* user_context);
+typedef void kairos_finish_task_fn(void* user_task, void* user_context);
+
 typedef struct kairos_world_settings {
     uint32_t struct_size;            /* sizeof(kairos_world_settings) */
     int32_t  broad_phase;            /* KAIROS_BROAD_PHASE_*; default SPACETIME_SAP */
     kairos_query_settings query;     /* narrow-phase settings; frozen layout, never shifts */
+    /* ABI version 2 (Kairos 0.2) appends the following; a caller whose struct_size ends before a
+     * field gets its default. */
+    uint32_t worker_count;           /* threads that run the narrow phase, the caller's included:
+                                        0 (default) or 1: the calling thread alone; n > 1 (at most
+                                        256): n - 1 threads the world starts and keeps, unless
+                                        enqueue_task is set (then the engine's threads run it and
+                                        the world starts none). Results are bit for bit the same
+                                        for every worker_count and scheduler. */
+    kairos_enqueue_task_fn* enqueue_task;  /* NULL (default): the world's own threads */
+    kairos_finish_task_fn*  finish_task;   /* required with enqueue_task */
+    void* task_user_context;               /* passed to both */
 } kairos_world_settings;
 
 /* Frozen layout. */

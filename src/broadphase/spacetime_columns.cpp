@@ -311,8 +311,10 @@ void SpacetimeSap::on_query_box(const Aabb& q, std::vector<uint32_t>& out) const
 
 void SpacetimeSap::query_column_box(const Column& c, int32_t cy, int32_t cz, int32_t y0, int32_t z0, const Aabb& q,
                                     std::vector<uint32_t>& out) const {
-    // Entries are sorted by lo and none is longer than max_len: those reaching q start after this.
-    const double first = q.min.x - c.max_len;
+    // Entries are sorted by lo and none is longer than max_len: those reaching q start after this
+    // (a few ulps lower, as query_column, for the rounding of hi - lo and of the subtraction).
+    double first = q.min.x - c.max_len;
+    first -= (std::fabs(first) + c.max_len) * 0x1p-50;
     auto it = std::lower_bound(c.entries.begin(), c.entries.end(), first,
                                [](const Entry& e, double v) { return e.lo < v; });
     for (; it != c.entries.end() && it->lo <= q.max.x; ++it) {

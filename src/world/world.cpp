@@ -41,7 +41,10 @@ double box_margin(const Aabb& b, double tolerance) {
 
 }  // namespace
 
-World::World(const WorldSettings& settings) : settings_(settings), broad_(BroadPhase::create(settings.broad_phase)) {}
+World::World(const WorldSettings& settings)
+    : settings_(settings),
+      broad_(BroadPhase::create(settings.broad_phase)),
+      workers_(std::make_unique<Workers>(settings.worker_count, settings.task_hook)) {}
 
 World::~World() {
     for (Object& o : objects_)
@@ -314,14 +317,90 @@ SweptSupport swept_support(const Shape& s, const Transform& start, Vec3 translat
 
 }  // namespace
 
+void World::narrow_job(const NarrowJob& job, NarrowOutcome& out) const {
+    out = NarrowOutcome{};
+    const double tol = settings_.tolerance;
+    const uint32_t max_it = settings_.max_iterations;
+    const uint32_t ia = job.ia, ib = job.ib;
+    const Object& oa = objects_[ia];
+    const Object& ob = objects_[ib];
+    Sweep still_a, still_b;
+    auto sweep = [&](const Object& o, uint32_t index, Sweep& still) -> const Sweep& {
+        if (swept_[index]) return sweeps_[index];
+        still = Sweep{};
+        still.start = rigid(o.pose);
+        return still;
+    };
+    const Sweep& sa = sweep(oa, ia, still_a);
+    const Sweep& sb = sweep(ob, ib, still_b);
+
+    const Vec3 seed = job.seed;
+    if (dot(seed, seed) > 0) {
+        // A separating axis from an earlier step: if its plane separates the two over the
+        // whole step, there is no contact and no cast is needed.
+        const Vec3 v = seed;
+        const SweptSupport a = swept_support(*oa.shape, sa.start, sa.translation, sa.rotates, sa.axis, sa.disk, v);
+        const SweptSupport b = swept_support(*ob.shape, sb.start, sb.translation, sb.rotates, sb.axis, sb.disk, v);
+        // The casts call shapes touching within tolerance times their size (the motion cast:
+        // times the sum of their bounding radii, at most sqrt(3) times a box's reach from
+        // the origin), so only a wider gap rules a contact out.
+        auto reach = [](const Object& o, const Sweep& sw) {
+            return std::sqrt(3.0) *
+                   std::fmax(max_abs(o.box.min - sw.start.translation), max_abs(o.box.max - sw.start.translation));
+        };
+        const double size = max_extent(oa.box) + max_extent(ob.box) + max_abs(sa.translation) +
+                            max_abs(sb.translation) + max_abs(sb.start.translation - sa.start.translation) +
+                            (sa.rotates || sb.rotates ? reach(oa, sa) + reach(ob, sb) : 0.0);
+        const double slack = 4 * tol * size + 16 * kEps * (std::fabs(a.hi0) + std::fabs(b.lo0) + size);
+        // Comparisons written so that NaN never separates.
+        if (a.hi0 + slack < b.lo0 && a.hi0 + a.shift + slack < b.lo0 + b.shift) {
+            out.kind = NarrowOutcome::Rejected;
+            out.keep_axis = true;
+            out.axis = v;
+            return;
+        }
+    }
+
+    CastResult& r = out.cast;
+    if (!sa.rotates && !sb.rotates) {
+        r = kairos::shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
+    } else {
+        // A turn: the motion cast (conservative advancement, docs/algorithms.md §4). It takes no
+        // cached axis, so the cached one serves only the separating-plane test above.
+        const Motion ma(oa.pose, swept_[ia] ? oa.end : oa.pose);
+        const Motion mb(ob.pose, swept_[ib] ? ob.end : ob.pose);
+        r = motion_cast(*oa.shape, ma, *ob.shape, mb, tol, max_it);
+    }
+    if (r.hit) {
+        out.kind = NarrowOutcome::Hit;
+        out.keep_axis = true;
+        out.axis = r.normal;
+        return;
+    }
+    // Missed: keep a separating axis of the end poses (the next step's start) for the next step,
+    // found from the old axis or from the line between the origins.
+    out.kind = NarrowOutcome::Missed;
+    Vec3 axis = seed;
+    if (!(dot(axis, axis) > 0))
+        axis = (sb.start.translation + sb.translation) - (sa.start.translation + sa.translation);
+    uint32_t it = 0;
+    const Pose end_a = swept_[ia] ? oa.end : oa.pose;
+    const Pose end_b = swept_[ib] ? ob.end : ob.pose;
+    if (!gjk_intersect(*oa.shape, rigid(end_a), *ob.shape, rigid(end_b), axis, &it)) {
+        out.keep_axis = true;
+        out.axis = axis;
+    }
+    out.extra_iterations = it;
+}
+
 void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
     contacts_.clear();
     pairs_.clear();
     next_axes_.clear();
-    const double tol = settings_.tolerance;
-    const uint32_t max_it = settings_.max_iterations;
-    Sweep still_a, still_b;
-    std::size_t cursor = 0;  // into axes_, sorted by key like bp_pairs
+    jobs_.clear();
+    // Sequential: the wanted pairs, their ids and their cached axes (a merge with axes_, both
+    // sorted by key).
+    std::size_t cursor = 0;
     for (const BroadPhasePair& p : bp_pairs) {
         if (!pair_wanted(p.a, p.b)) {
             ++counters_.filtered_pairs;
@@ -334,76 +413,36 @@ void World::narrow_phase(const std::vector<BroadPhasePair>& bp_pairs) {
             std::swap(id_a, id_b);
         }
         pairs_.push_back({id_a, id_b, p.t_first});
-        const Object& oa = objects_[ia];
-        const Object& ob = objects_[ib];
-        auto sweep = [&](const Object& o, uint32_t index, Sweep& still) -> const Sweep& {
-            if (swept_[index]) return sweeps_[index];
-            still = Sweep{};
-            still.start = rigid(o.pose);
-            return still;
-        };
-        const Sweep& sa = sweep(oa, ia, still_a);
-        const Sweep& sb = sweep(ob, ib, still_b);
-
         const uint64_t key = (uint64_t{p.a} << 32) | p.b;
         while (cursor < axes_.size() && axes_[cursor].key < key) ++cursor;
         Vec3 seed{};
         if (cursor < axes_.size() && axes_[cursor].key == key && axes_[cursor].id_a == id_a &&
-            axes_[cursor].id_b == id_b) {
-            // A separating axis from an earlier step: if its plane separates the two over the
-            // whole step, there is no contact and no cast is needed.
-            const Vec3 v = axes_[cursor].axis;
-            const SweptSupport a = swept_support(*oa.shape, sa.start, sa.translation, sa.rotates, sa.axis, sa.disk, v);
-            const SweptSupport b = swept_support(*ob.shape, sb.start, sb.translation, sb.rotates, sb.axis, sb.disk, v);
-            // The casts call shapes touching within tolerance times their size (the motion cast:
-            // times the sum of their bounding radii, at most sqrt(3) times a box's reach from
-            // the origin), so only a wider gap rules a contact out.
-            auto reach = [](const Object& o, const Sweep& sw) {
-                return std::sqrt(3.0) *
-                       std::fmax(max_abs(o.box.min - sw.start.translation), max_abs(o.box.max - sw.start.translation));
-            };
-            const double size = max_extent(oa.box) + max_extent(ob.box) + max_abs(sa.translation) +
-                                max_abs(sb.translation) + max_abs(sb.start.translation - sa.start.translation) +
-                                (sa.rotates || sb.rotates ? reach(oa, sa) + reach(ob, sb) : 0.0);
-            const double slack = 4 * tol * size + 16 * kEps * (std::fabs(a.hi0) + std::fabs(b.lo0) + size);
-            // Comparisons written so that NaN never separates.
-            if (a.hi0 + slack < b.lo0 && a.hi0 + a.shift + slack < b.lo0 + b.shift) {
-                ++counters_.axis_rejections;
-                next_axes_.push_back({key, id_a, id_b, v});
-                continue;
-            }
-            seed = v;
-        }
-
-        CastResult r;
-        if (!sa.rotates && !sb.rotates) {
-            r = kairos::shape_cast(*oa.shape, sa.start, sa.translation, *ob.shape, sb.start, sb.translation, tol, max_it);
+            axes_[cursor].id_b == id_b)
+            seed = axes_[cursor].axis;
+        jobs_.push_back({ia, ib, id_a, id_b, key, seed});
+    }
+    // Any worker: the casts, each writing its own outcome.
+    outcomes_.resize(jobs_.size());
+    auto cast_range = [this](uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i < end; ++i) narrow_job(jobs_[i], outcomes_[i]);
+    };
+    workers_->run(static_cast<uint32_t>(jobs_.size()), 32, cast_range);
+    // Sequential again, in pair order: contacts, axes for the next step, counters.
+    for (std::size_t i = 0; i < jobs_.size(); ++i) {
+        const NarrowJob& j = jobs_[i];
+        const NarrowOutcome& o = outcomes_[i];
+        if (o.kind == NarrowOutcome::Rejected) {
+            ++counters_.axis_rejections;
         } else {
-            // A turn: the motion cast (conservative advancement, docs/algorithms.md §4). It takes no
-            // cached axis, so the cached one serves only the separating-plane test above.
-            const Motion ma(oa.pose, swept_[ia] ? oa.end : oa.pose);
-            const Motion mb(ob.pose, swept_[ib] ? ob.end : ob.pose);
-            r = motion_cast(*oa.shape, ma, *ob.shape, mb, tol, max_it);
+            ++counters_.narrow_phase_queries;
+            counters_.gjk_iterations += o.cast.iterations + o.extra_iterations;
         }
-        ++counters_.narrow_phase_queries;
-        counters_.gjk_iterations += r.iterations;
-        if (r.hit) {
-            contacts_.push_back({id_a, id_b, oa.user_data, ob.user_data, r.toi, r.point, r.normal});
-            next_axes_.push_back({key, id_a, id_b, r.normal});
-        } else {
-            // Missed: keep a separating axis of the end poses (the next step's start) for the
-            // next step, found from the old axis or from the line between the origins.
-            Vec3 axis = seed;
-            if (!(dot(axis, axis) > 0))
-                axis = (sb.start.translation + sb.translation) - (sa.start.translation + sa.translation);
-            uint32_t it = 0;
-            const Pose end_a = swept_[ia] ? oa.end : oa.pose;
-            const Pose end_b = swept_[ib] ? ob.end : ob.pose;
-            if (!gjk_intersect(*oa.shape, rigid(end_a), *ob.shape, rigid(end_b), axis, &it)) {
-                next_axes_.push_back({key, id_a, id_b, axis});
-            }
-            counters_.gjk_iterations += it;
+        if (o.kind == NarrowOutcome::Hit) {
+            const CastResult& r = o.cast;
+            contacts_.push_back(
+                {j.id_a, j.id_b, objects_[j.ia].user_data, objects_[j.ib].user_data, r.toi, r.point, r.normal});
         }
+        if (o.keep_axis) next_axes_.push_back({j.key, j.id_a, j.id_b, o.axis});
     }
     axes_.swap(next_axes_);
 

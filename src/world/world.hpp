@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "broadphase/broadphase.hpp"
+#include "casts/cast.hpp"
 #include "math/transform.hpp"
 #include "shapes/shape.hpp"
+#include "world/workers.hpp"
 
 namespace kairos {
 
@@ -71,6 +73,8 @@ struct WorldSettings {
     BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
     double tolerance = 1e-10;       // relative accuracy of the casts (docs/c-api.md "Tolerances")
     uint32_t max_iterations = 256;  // a guard only
+    uint32_t worker_count = 0;      // threads of the narrow phase, the caller's included (Workers)
+    TaskHook task_hook;             // an engine's scheduler instead of the world's own threads
 };
 
 class World {
@@ -178,6 +182,21 @@ private:
     Object* find_mutable(uint64_t id);
     // The motion pose -> end of a shape and its boxes at t = 0 and t = 1. box_now: the box it
     // has at `pose` when known (a translation then keeps it as the start box), else nullptr.
+    // One pair of the narrow phase: found by the sequential pass over the broad-phase pairs, cast
+    // by any worker, its outcome merged back in pair order (so no result depends on the workers).
+    struct NarrowJob {
+        uint32_t ia, ib;  // slots, id_a < id_b
+        uint64_t id_a, id_b, key;
+        Vec3 seed;  // a cached separating axis, or zero
+    };
+    struct NarrowOutcome {
+        enum Kind : uint8_t { Rejected, Hit, Missed } kind = Missed;
+        bool keep_axis = false;  // `axis` is a separating axis to cache for the next step
+        Vec3 axis;
+        CastResult cast;
+        uint32_t extra_iterations = 0;  // of the end-pose check after a miss
+    };
+    void narrow_job(const NarrowJob& job, NarrowOutcome& out) const;
     Sweep sweep_of(const Shape& shape, const Pose& pose, const Pose& end, const Aabb* box_now, Aabb* out_start,
                    Aabb* out_end) const;
     // The slots whose broad-phase box the box swept linearly over s meets, and the filter admits,
@@ -197,6 +216,9 @@ private:
     std::vector<Sweep> sweeps_;   // by slot, filled for moving objects during a step
     std::vector<uint8_t> swept_;  // by slot: sweeps_ holds this step's motion
     std::vector<CachedAxis> axes_, next_axes_;
+    std::vector<NarrowJob> jobs_;
+    std::vector<NarrowOutcome> outcomes_;
+    std::unique_ptr<Workers> workers_;
 
     std::vector<Contact> contacts_;
     std::vector<WorldPair> pairs_;

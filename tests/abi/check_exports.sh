@@ -29,15 +29,21 @@ while read -r value type name; do
         name=$type
         type=$value
     fi
-    if [ "$type" = A ] && [ "$name" = KAIROS_0 ]; then continue; fi  # the version node itself
+    if [ "$type" = A ] && { [ "$name" = KAIROS_0 ] || [ "$name" = KAIROS_0.2 ]; }; then continue; fi  # version nodes
+    # kairos_world_settings_init grew a version in 0.2 (cmake/kairos.map): its default is
+    # KAIROS_0.2, and the 0.1 one stays as a non-default KAIROS_0 version for old binaries.
     case "$name" in
+        kairos_world_settings_init@KAIROS_0) compat_init=1; continue ;;
+        kairos_world_settings_init@@KAIROS_0.2) ;;
         kairos_*@@KAIROS_0) ;;
         *) fail "exported symbol '$name' ($type) is not a kairos_ symbol under KAIROS_0"; continue ;;
     esac
     [ "$type" = T ] || fail "exported symbol '$name' has type $type, expected T (a function; no data)"
+    name=${name%@@KAIROS_0.2}
     exported+=("${name%@@KAIROS_0}")
 done < <("$nm" -D --defined-only "$lib")
 [ "${#exported[@]}" -gt 0 ] || fail "nm -D --defined-only found no kairos_ functions"
+[ "${compat_init:-0}" = 1 ] || fail "no kairos_world_settings_init@KAIROS_0 (the 0.1 init, for binaries linked against 0.1)"
 
 # ---- The exported set is exactly the set the header declares -----------------------------------
 declared=$(sed -n 's/^KAIROS_API[^(]*[ *]\(kairos_[a-z0-9_]*\)(.*/\1/p' "$header" | sort -u)

@@ -4,10 +4,11 @@
  * Usage: kairos_abi_dlopen <path to libkairos.so.0>. The program is not linked against the
  * library; it includes the header for the types only. Exits non-zero on any wrong answer.
  */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* dlvsym */
 
 #include <dlfcn.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -114,6 +115,37 @@ int main(int argc, char** argv) {
 
     CHECK(get_api(KAIROS_ABI_VERSION, &api) == KAIROS_OK);
     if (api != NULL) use_table(api);
+
+    /* A caller of ABI version 1 (Kairos 0.1) has the 0.1 kairos_world_settings, which ends before
+     * worker_count: its init, through the version-1 table or as the symbol version KAIROS_0 that
+     * 0.1 binaries bind to, writes no byte past that struct, and the world accepts it. */
+    {
+        const kairos_api* v1 = NULL;
+        void* old_init_symbol = dlvsym(library, "kairos_world_settings_init", "KAIROS_0");
+        void (*old_init)(kairos_world_settings*) = NULL;
+        const size_t v1_size = offsetof(kairos_world_settings, worker_count);
+        int round;
+        CHECK(get_api(1u, &v1) == KAIROS_OK);
+        CHECK(old_init_symbol != NULL);
+        if (old_init_symbol != NULL) memcpy(&old_init, &old_init_symbol, sizeof old_init);
+        for (round = 0; round < 2 && v1 != NULL; ++round) {
+            union {
+                kairos_world_settings s;
+                unsigned char bytes[sizeof(kairos_world_settings)];
+            } buffer;
+            kairos_world* world = NULL;
+            size_t i;
+            void (*init)(kairos_world_settings*) = round == 0 ? v1->world_settings_init : old_init;
+            if (init == NULL) continue;
+            memset(buffer.bytes, 0xA5, sizeof buffer.bytes);
+            init(&buffer.s);
+            CHECK(buffer.s.struct_size == v1_size);
+            for (i = v1_size; i < sizeof buffer.bytes; ++i) CHECK(buffer.bytes[i] == 0xA5);
+            CHECK(v1->world_create(&buffer.s, &world) == KAIROS_OK);
+            if (world != NULL) v1->world_destroy(world);
+        }
+        if (v1 != NULL) CHECK(v1->struct_size == offsetof(kairos_api, shape_triangle));
+    }
 
     /* Versions the library does not provide, and bad pointers, are errors that write nothing. */
     other = (const kairos_api*)&failures;

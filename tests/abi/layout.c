@@ -75,7 +75,12 @@ PIN_OFFSET(kairos_cast_result, termination, 68);
 
 /* ---- World ------------------------------------------------------------------------------------ */
 /* Growing: fields may be appended after query, so only the prefix offsets are pinned forever. */
-PIN_SIZE(kairos_world_settings, 32);
+/* 0.1's struct ended at 32 bytes (worker_count's offset): its init stays exported for it. */
+PIN_SIZE(kairos_world_settings, 64);
+PIN_OFFSET(kairos_world_settings, worker_count, 32);
+PIN_OFFSET(kairos_world_settings, enqueue_task, 40);
+PIN_OFFSET(kairos_world_settings, finish_task, 48);
+PIN_OFFSET(kairos_world_settings, task_user_context, 56);
 PIN_OFFSET(kairos_world_settings, struct_size, 0);
 PIN_OFFSET(kairos_world_settings, broad_phase, 4);
 PIN_OFFSET(kairos_world_settings, query, 8);

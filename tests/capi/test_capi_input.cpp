@@ -110,10 +110,22 @@ TEST(Library, GetApi) {
         EXPECT_TRUE(Rejected(kairos_get_api(bad, &api), KAIROS_ERROR_UNSUPPORTED_VERSION, "abi_version"));
         EXPECT_EQ(api, nullptr);
     }
+    // Version 1: the 0.1 table's size, and the 0.1 settings init (it writes only the 0.1 struct).
     ASSERT_EQ(kairos_get_api(1, &api), KAIROS_OK);
+    ASSERT_NE(api, nullptr);
+    EXPECT_EQ(api->struct_size, offsetof(kairos_api, shape_triangle));
+    EXPECT_NE(api->world_settings_init, &kairos_world_settings_init);
+    kairos_world_settings s;
+    std::memset(&s, 0xA5, sizeof s);
+    api->world_settings_init(&s);
+    EXPECT_EQ(s.struct_size, offsetof(kairos_world_settings, worker_count));
+    EXPECT_EQ(s.worker_count, 0xA5A5A5A5u);  // beyond the 0.1 struct: untouched
+    ASSERT_EQ(kairos_get_api(KAIROS_ABI_VERSION, &api), KAIROS_OK);
     ASSERT_NE(api, nullptr);
     EXPECT_EQ(api->struct_size, sizeof(kairos_api));
     EXPECT_EQ(api->abi_version, KAIROS_ABI_VERSION);
+    EXPECT_EQ(api->world_settings_init, &kairos_world_settings_init);
+    EXPECT_EQ(api->world_query_box, &kairos_world_query_box);
     // Every entry is set and is the exported function of the same name.
     EXPECT_EQ(api->status_name, &kairos_status_name);
     EXPECT_EQ(api->shape_sphere, &kairos_shape_sphere);

@@ -70,10 +70,11 @@ std::vector<unsigned char> query_batch(const SharedShapes& shapes) {
 }
 
 // A world of shared shapes stepped a few times; its contacts as raw bytes.
-std::vector<unsigned char> world_run(const SharedShapes& shapes, int32_t broad_phase) {
+std::vector<unsigned char> world_run(const SharedShapes& shapes, int32_t broad_phase, uint32_t workers = 0) {
     kairos_world_settings s;
     kairos_world_settings_init(&s);
     s.broad_phase = broad_phase;
+    s.worker_count = workers;
     kairos_world* w = nullptr;
     EXPECT_EQ(kairos_world_create(&s, &w), KAIROS_OK);
     std::vector<kairos_object_id> ids;
@@ -151,6 +152,71 @@ TEST(Threads, OneWorldPerThreadOverSharedShapes) {
     }
     for (auto& th : threads) th.join();
     EXPECT_EQ(mismatches.load(), 0);
+}
+
+// A world's own worker threads (worker_count 2 and 4): the same contacts as one thread, also
+// while other threads step worlds of their own with workers.
+TEST(Threads, WorldWorkersGiveTheSameContacts) {
+    SharedShapes shapes;
+    const std::vector<unsigned char> reference = world_run(shapes, KAIROS_BROAD_PHASE_SPACETIME_SAP);
+    ASSERT_FALSE(reference.empty());
+    std::atomic<int> mismatches{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 2; ++t) {
+        threads.emplace_back([&, t] {
+            for (int round = 0; round < 2; ++round)
+                if (world_run(shapes, KAIROS_BROAD_PHASE_SPACETIME_SAP, t == 0 ? 2u : 4u) != reference) ++mismatches;
+        });
+    }
+    for (auto& th : threads) th.join();
+    EXPECT_EQ(mismatches.load(), 0);
+}
+
+// World queries are const: several threads query one world at once (nothing changes it meanwhile)
+// and each gets the answers a single thread gets.
+TEST(Threads, ConcurrentWorldQueries) {
+    SharedShapes shapes;
+    kairos_world* w = nullptr;
+    ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
+    for (int i = 0; i < 60; ++i) {
+        kairos_pose p = at(1.1 * (i % 10), 1.1 * (i / 10), 0.2 * (i % 3));
+        kairos_object_id id = 0;
+        ASSERT_EQ(kairos_world_add(w, shapes.all[static_cast<size_t>(i) % shapes.all.size()], &p,
+                                   static_cast<uint64_t>(i), &id),
+                  KAIROS_OK);
+    }
+    ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+    auto queries = [&] {
+        std::vector<unsigned char> bytes;
+        for (int q = 0; q < 40; ++q) {
+            const double k = q;
+            kairos_world_hit hit;
+            EXPECT_EQ(kairos_world_ray_cast(w, {-2, 0.3 * k / 4, 0.1}, {14, 0.05 * k, 0}, nullptr, &hit), KAIROS_OK);
+            bytes.insert(bytes.end(), reinterpret_cast<unsigned char*>(&hit),
+                         reinterpret_cast<unsigned char*>(&hit) + sizeof hit);
+            const kairos_motion m{at(-2, 0.25 * k, 1.5), at(12, 0.25 * k, -0.5)};
+            EXPECT_EQ(kairos_world_shape_cast(w, shapes.all[static_cast<size_t>(q) % 5], &m, nullptr, nullptr, &hit),
+                      KAIROS_OK);
+            bytes.insert(bytes.end(), reinterpret_cast<unsigned char*>(&hit),
+                         reinterpret_cast<unsigned char*>(&hit) + sizeof hit);
+            kairos_object_id ids[64];
+            size_t n = 0;
+            EXPECT_EQ(kairos_world_query_box(w, {0.2 * k, 0, -1}, {0.2 * k + 2, 6, 1}, nullptr, ids, 64, &n), KAIROS_OK);
+            bytes.insert(bytes.end(), reinterpret_cast<unsigned char*>(ids),
+                         reinterpret_cast<unsigned char*>(ids) + n * sizeof(kairos_object_id));
+        }
+        return bytes;
+    };
+    const std::vector<unsigned char> reference = queries();
+    std::atomic<int> mismatches{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t)
+        threads.emplace_back([&] {
+            if (queries() != reference) ++mismatches;
+        });
+    for (auto& th : threads) th.join();
+    EXPECT_EQ(mismatches.load(), 0);
+    kairos_world_destroy(w);
 }
 
 TEST(Threads, LastErrorIsPerThread) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -627,5 +628,53 @@ TEST_F(WorldFixture, WorldQueriesRefuseBadInputAndWriteNothing) {
     const kairos_filter blind{1, 0, 0};
     ASSERT_EQ(kairos_world_query_box(w, {-10, -10, -10}, {10, 10, 10}, &blind, nullptr, 0, &count), KAIROS_OK);
     EXPECT_EQ(count, 0u);
+    kairos_world_destroy(w);
+}
+
+// worker_count and the task hook: bad values are refused, naming the field; a caller of 0.1 (a
+// struct_size that ends before worker_count, whatever lies beyond) gets one thread.
+TEST_F(WorldFixture, WorkerSettingsAreChecked) {
+    kairos_world_settings s;
+    kairos_world_settings_init(&s);
+    EXPECT_EQ(s.struct_size, sizeof(kairos_world_settings));
+    EXPECT_EQ(s.worker_count, 0u);
+    EXPECT_EQ(s.enqueue_task, nullptr);
+    kairos_world* w = nullptr;
+    s.worker_count = 257;
+    EXPECT_EQ(kairos_world_create(&s, &w), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(kairos_last_error(), "worker_count"), nullptr);
+    EXPECT_EQ(w, nullptr);
+    s.worker_count = 2;
+    s.enqueue_task = [](kairos_task_fn*, uint32_t, uint32_t, void*, void*) -> void* { return nullptr; };
+    EXPECT_EQ(kairos_world_create(&s, &w), KAIROS_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(kairos_last_error(), "finish_task"), nullptr);
+    EXPECT_EQ(w, nullptr);
+    // The 0.1 size: the fields after it are not read (the half-set hook above would be refused).
+    s.struct_size = static_cast<uint32_t>(offsetof(kairos_world_settings, worker_count));
+    ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK) << kairos_last_error();
+    kairos_world_destroy(w);
+    w = nullptr;
+    // The full size with an engine's hook that runs every range inline and returns NULL.
+    kairos_world_settings_init(&s);
+    s.worker_count = 4;
+    s.enqueue_task = [](kairos_task_fn* task, uint32_t count, uint32_t, void* ctx, void* user) -> void* {
+        ++*static_cast<int*>(user);
+        task(0, count, 0, ctx);
+        return nullptr;
+    };
+    s.finish_task = [](void*, void*) {};
+    int calls = 0;
+    s.task_user_context = &calls;
+    ASSERT_EQ(kairos_world_create(&s, &w), KAIROS_OK) << kairos_last_error();
+    kairos_object_id a = 0, b = 0;
+    const kairos_pose pa = at(0, 0, 0), pb = at(0.5, 0, 0);
+    ASSERT_EQ(kairos_world_add(w, cube, &pa, 1, &a), KAIROS_OK);
+    ASSERT_EQ(kairos_world_add(w, cube, &pb, 2, &b), KAIROS_OK);
+    ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+    const kairos_contact* c = nullptr;
+    size_t n = 0;
+    ASSERT_EQ(kairos_world_contacts(w, &c, &n), KAIROS_OK);
+    EXPECT_EQ(n, 1u);
+    EXPECT_EQ(calls, 1);
     kairos_world_destroy(w);
 }

@@ -75,7 +75,10 @@ class CastResult(ctypes.Structure):
 
 class WorldSettings(ctypes.Structure):
     _fields_ = [("struct_size", ctypes.c_uint32), ("broad_phase", ctypes.c_int32),
-                ("query", QuerySettings)]
+                ("query", QuerySettings),
+                # 0.2: worker_count and the task hook (function pointers as plain pointers here)
+                ("worker_count", ctypes.c_uint32), ("enqueue_task", ctypes.c_void_p),
+                ("finish_task", ctypes.c_void_p), ("task_user_context", ctypes.c_void_p)]
 
 
 class Contact(ctypes.Structure):
@@ -192,7 +195,7 @@ class KairosCtypesTest(unittest.TestCase):
     def test_struct_sizes_match_the_c_layout(self):
         # The same numbers as tests/abi/layout.c (x86-64 LP64).
         sizes = {Vec3: 24, Quat: 32, Pose: 56, Motion: 112, QuerySettings: 24,
-                 DistanceResult: 96, CastResult: 72, WorldSettings: 32, Contact: 88,
+                 DistanceResult: 96, CastResult: 72, WorldSettings: 64, Contact: 88,
                  StepStats: 64, Filter: 12, WorldHit: 80}
         for struct, size in sizes.items():
             self.assertEqual(ctypes.sizeof(struct), size, struct.__name__)
@@ -346,8 +349,13 @@ class KairosCtypesTest(unittest.TestCase):
 
     def test_world_objects_and_queries(self):
         lib = self.lib
+        settings = WorldSettings()
+        lib.kairos_world_settings_init(ctypes.byref(settings))
+        self.assertEqual(settings.worker_count, 0)
+        settings.worker_count = 2  # the world's own second thread runs half of the narrow phase
         world = WorldP()
-        self.assertEqual(lib.kairos_world_create(None, ctypes.byref(world)), KAIROS_OK, self.last_error())
+        self.assertEqual(lib.kairos_world_create(ctypes.byref(settings), ctypes.byref(world)), KAIROS_OK,
+                         self.last_error())
         self.addCleanup(lib.kairos_world_destroy, world)
         box = self.make(lib.kairos_shape_box, Vec3(1.0, 1.0, 1.0))
         ids = []

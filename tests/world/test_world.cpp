@@ -11,6 +11,8 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "broadphase/broadphase.hpp"
@@ -579,6 +581,113 @@ TEST(World, AddRemoveTeleportBetweenSteps) {
         EXPECT_GT(h.per_object(h.totals().pairs), 0.1) << "seed " << seed;
         EXPECT_LT(h.per_object(h.totals().pairs), 3.0) << "seed " << seed;
     }
+}
+
+// An engine's scheduler for the task hook: each range on a thread of its own, started in reverse
+// order; finish joins them. `inline_run` instead runs every range itself and returns NULL.
+struct TestScheduler {
+    bool inline_run = false;
+    std::vector<std::thread> threads;
+    uint64_t tasks = 0;
+    static void* enqueue(TaskFn* task, uint32_t count, uint32_t min_range, void* task_context, void* user) {
+        auto& self = *static_cast<TestScheduler*>(user);
+        ++self.tasks;
+        const uint32_t range = std::max<uint32_t>(min_range, 1);
+        std::vector<std::pair<uint32_t, uint32_t>> ranges;
+        for (uint32_t b = 0; b < count; b += range) ranges.push_back({b, std::min(count, b + range)});
+        std::reverse(ranges.begin(), ranges.end());
+        if (self.inline_run) {
+            for (auto [b, e] : ranges) task(b, e, 0, task_context);
+            return nullptr;
+        }
+        uint32_t worker = 0;
+        for (auto [b, e] : ranges) {
+            const uint32_t w = worker++ % 3;
+            self.threads.emplace_back([=] { task(b, e, w, task_context); });
+        }
+        return &self;
+    }
+    static void finish(void* handle, void*) {
+        auto& self = *static_cast<TestScheduler*>(handle);
+        for (std::thread& t : self.threads) t.join();
+        self.threads.clear();
+    }
+};
+
+// The same scene stepped with one thread, the world's own workers (2, 3, 7) and an engine's
+// scheduler (threads per range, reverse order; inline): contacts, pairs and counters bit for bit
+// the same.
+TEST(World, WorkersGiveBitIdenticalResults) {
+    struct Run {
+        std::vector<Contact> contacts;
+        std::vector<WorldPair> pairs;
+        std::vector<uint64_t> counts;
+    };
+    auto run = [](const WorldSettings& settings) {
+        Run out;
+        Rng rng(2026);
+        World w(settings);
+        std::vector<Body> bodies;
+        for (int i = 0; i < 600; ++i) {
+            Body b = random_body(rng, 12, 1.0, 0.8);
+            if (i % 4 == 0) {
+                b.spin_axis = rng.on_sphere(1);
+                b.spin = rng.uniform(0.1, 2.0);
+            }
+            b.id = w.add(*b.shape, b.pose, static_cast<uint64_t>(i));
+            if (i % 9 == 0) w.set_static(b.id, true);
+            bodies.push_back(std::move(b));
+        }
+        for (int s = 0; s < 3; ++s) {
+            for (Body& b : bodies)
+                if (!w.find(b.id)->is_static) w.move(b.id, end_of(b));
+            w.step();
+            out.contacts.insert(out.contacts.end(), w.contacts().begin(), w.contacts().end());
+            out.pairs.insert(out.pairs.end(), w.pairs().begin(), w.pairs().end());
+            const StepCounters& c = w.counters();
+            out.counts.insert(out.counts.end(), {c.broad_phase_pairs, c.narrow_phase_queries, c.gjk_iterations,
+                                                 c.axis_rejections, c.filtered_pairs, c.contacts});
+            for (Body& b : bodies)
+                if (!w.find(b.id)->is_static) b.pose = end_of(b);
+        }
+        return out;
+    };
+    const Run one = run(WorldSettings{});
+    ASSERT_GT(one.contacts.size(), 200u);
+    TestScheduler threads, inline_run;
+    inline_run.inline_run = true;
+    std::vector<std::pair<std::string, WorldSettings>> variants;
+    for (uint32_t n : {2u, 3u, 7u}) {
+        WorldSettings s;
+        s.worker_count = n;
+        variants.push_back({"worker_count " + std::to_string(n), s});
+    }
+    for (TestScheduler* sched : {&threads, &inline_run}) {
+        WorldSettings s;
+        s.worker_count = 3;
+        s.task_hook = {&TestScheduler::enqueue, &TestScheduler::finish, sched};
+        variants.push_back({sched->inline_run ? "hook, inline" : "hook, a thread per range", s});
+    }
+    for (const auto& [name, settings] : variants) {
+        SCOPED_TRACE(name);
+        const Run other = run(settings);
+        ASSERT_EQ(other.contacts.size(), one.contacts.size());
+        for (std::size_t i = 0; i < one.contacts.size(); ++i) {
+            const Contact& p = one.contacts[i];
+            const Contact& q = other.contacts[i];
+            ASSERT_TRUE(p.a == q.a && p.b == q.b && p.user_a == q.user_a && p.user_b == q.user_b &&
+                        std::bit_cast<uint64_t>(p.toi) == std::bit_cast<uint64_t>(q.toi) && p.point == q.point &&
+                        p.normal == q.normal)
+                << "contact " << i;
+        }
+        ASSERT_EQ(other.pairs.size(), one.pairs.size());
+        for (std::size_t i = 0; i < one.pairs.size(); ++i)
+            ASSERT_TRUE(one.pairs[i].a == other.pairs[i].a && one.pairs[i].b == other.pairs[i].b &&
+                        std::bit_cast<uint64_t>(one.pairs[i].t_first) == std::bit_cast<uint64_t>(other.pairs[i].t_first));
+        EXPECT_EQ(other.counts, one.counts);
+    }
+    EXPECT_EQ(threads.tasks, 3u);  // one task per step
+    EXPECT_EQ(inline_run.tasks, 3u);
 }
 
 TEST(World, SameSceneGivesBitIdenticalContacts) {
