@@ -20,3 +20,9 @@ if(KAIROS_WORLD_FCL_FOUND AND KAIROS_WORLD_BULLET64_FOUND AND KAIROS_WORLD_BULLE
 else()
     message(STATUS "bench_world skipped: needs FCL and Bullet's double build (pkg-config fcl, bullet-float64)")
 endif()
+
+# World queries against brute force, and the step's scaling with worker threads (no peers).
+add_executable(bench_world_queries ${CMAKE_CURRENT_SOURCE_DIR}/bench_world_queries.cpp)
+target_include_directories(bench_world_queries PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
+target_link_libraries(bench_world_queries PRIVATE kairos_core benchmark::benchmark)
+kairos_warnings(bench_world_queries)

@@ -27,6 +27,7 @@ struct Object {
     kairos_object_id id = 0;
     uint64_t user = 0;
     ModelPtr model;
+    const kairos_shape* shape = nullptr;  // the world holds a reference while the object lives
     PoseCase pose;  // now (start of the next step)
     PoseCase end;   // end of the next step, when moving
     bool moving = false;
@@ -58,6 +59,7 @@ private:
     void null_arguments();
     void set_static_or_filter();
     void getters();
+    void queries();
     // An id to act on: live, removed, random, 0, or a live one with another generation.
     kairos_object_id choose_id(Object** live_out);
     Object* find(kairos_object_id id);
@@ -109,7 +111,7 @@ bool WorldFuzz::create() {
             if (k == 0)
                 buf.s.struct_size = 4;
             else if (k == 1)
-                buf.s.struct_size = sizeof(kairos_world_settings) - 8;
+                buf.s.struct_size = offsetof(kairos_world_settings, worker_count) - 8;  // short of 0.1's
             else
                 buf.s.struct_size = sizeof(kairos_world_settings) + 16;
             if (k == 3) buf.tail[in_.pick(16)] = static_cast<unsigned char>(1 + in_.pick(255));
@@ -122,6 +124,14 @@ bool WorldFuzz::create() {
             const SettingsCase q = make_settings(in_);
             if (q.use) buf.s.query = q.settings;
             expect_settings(q, v);
+            // Sometimes worker threads, or the 0.1 struct (its size, whatever follows).
+            const unsigned w = in_.pick(16);
+            if (w == 0) buf.s.worker_count = 2 + in_.pick(2);
+            if (w == 1) buf.s.struct_size = offsetof(kairos_world_settings, worker_count);
+            if (w == 2) {
+                buf.s.worker_count = 257;
+                v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+            }
             break;
         }
     }
@@ -211,6 +221,7 @@ void WorldFuzz::add() {
     o.id = out;
     o.user = user;
     o.model = shape.model;
+    o.shape = shape.shape.get();
     o.pose = pose;
     live_.push_back(o);
 }
@@ -578,6 +589,165 @@ void WorldFuzz::getters() {
                   static_cast<unsigned long long>(o->user));
 }
 
+// World queries against brute force over the pair queries at the objects' current poses (rays:
+// kairos_ray_cast with the world's settings; shape casts: kairos_shape_cast or, for a turn,
+// kairos_motion_cast), and their contract: statuses, nothing written on failure, ranges, ids.
+void WorldFuzz::queries() {
+    kairos_filter filter{1u << in_.pick(3), in_.pick(2) ? 0xffffffffu : in_.pick(8),
+                         static_cast<int32_t>(in_.pick(5)) - 2};
+    const bool use_filter = in_.pick(2) == 0;
+    auto sees = [&](const Object& o) {
+        if (!use_filter) return true;
+        if (filter.group != 0 && filter.group == o.filter.group) return filter.group > 0;
+        return (filter.category_bits & o.filter.mask_bits) != 0 && (o.filter.category_bits & filter.mask_bits) != 0;
+    };
+    auto in_range = [](const kairos_vec3& v) {
+        return std::fabs(v.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(v.y) <= KAIROS_MAX_MAGNITUDE &&
+               std::fabs(v.z) <= KAIROS_MAX_MAGNITUDE;  // NaN fails
+    };
+    const bool exact = all_moderate();
+    const unsigned kind = in_.pick(3);
+    if (kind == 2) {
+        kairos_vec3 lo = position(in_), hi = lo;
+        const kairos_vec3 d = small_vec(in_, 4);
+        hi.x += std::fabs(d.x);
+        hi.y += std::fabs(d.y);
+        hi.z += std::fabs(d.z);
+        if (in_.rare(8)) std::swap(lo.y, hi.y);
+        kairos_object_id ids[kMaxObjects];
+        poison(ids);
+        size_t count;
+        poison(count);
+        const size_t capacity = in_.pick(kMaxObjects + 1);
+        const int32_t status = observe("kairos_world_query_box", [&] {
+            return kairos_world_query_box(world_, lo, hi, use_filter ? &filter : nullptr, capacity ? ids : nullptr,
+                                          capacity, &count);
+        });
+        Verdict v;
+        if (!in_range(lo) || !in_range(hi) || !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z))
+            v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+        v.check(status, "kairos_world_query_box");
+        if (status != KAIROS_OK) {
+            if (!poisoned(count) || !poisoned(ids)) violation("kairos_world_query_box failed but wrote an output");
+            return;
+        }
+        for (size_t i = capacity; i < kMaxObjects; ++i) {
+            kairos_object_id untouched;
+            poison(untouched);
+            if (ids[i] != untouched) violation("kairos_world_query_box wrote past capacity %zu", capacity);
+        }
+        // Brute force: the tight boxes kairos_shape_bounds gives at the current poses.
+        std::vector<kairos_object_id> want;
+        for (const Object& o : live_) {
+            if (!sees(o)) continue;
+            kairos_vec3 bmin, bmax;
+            if (kairos_shape_bounds(o.shape, &o.pose.pose, &bmin, &bmax) != KAIROS_OK) return;  // beyond range
+            if (bmin.x <= hi.x && lo.x <= bmax.x && bmin.y <= hi.y && lo.y <= bmax.y && bmin.z <= hi.z &&
+                lo.z <= bmax.z)
+                want.push_back(o.id);
+        }
+        std::sort(want.begin(), want.end());
+        if (count != want.size()) violation("kairos_world_query_box: %zu ids, brute force finds %zu", count, want.size());
+        for (size_t i = 0; i < count && i < capacity; ++i)
+            if (ids[i] != want[i])
+                violation("kairos_world_query_box: id %zu is %llu, brute force says %llu", i,
+                          static_cast<unsigned long long>(ids[i]), static_cast<unsigned long long>(want[i]));
+        return;
+    }
+    // A ray, or a shape following a motion.
+    const Built* cast_shape = nullptr;
+    kairos_motion motion{};
+    SettingsCase settings;
+    kairos_vec3 origin{}, translation{};
+    Verdict v;
+    if (kind == 0) {
+        origin = position(in_);
+        translation = in_.pick(4) == 0 ? direction(in_) : small_vec(in_, 8);
+        if (!in_range(origin) || !in_range(translation)) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+    } else {
+        if (shapes_.empty()) return;
+        cast_shape = &shapes_[in_.pick(static_cast<unsigned>(shapes_.size()))];
+        const PoseCase start = make_transform(in_);
+        PoseCase end = in_.pick(2) ? make_pose_near(in_, start.pose) : start;
+        if (in_.pick(2)) {  // a pure translation
+            end.pose.orientation = start.pose.orientation;
+            end.pose.position.x += 3;
+        }
+        motion = {start.pose, end.pose};
+        settings = make_settings(in_);
+        expect_pose(start, v);
+        expect_pose(end, v);
+        expect_settings(settings, v);
+        if (!cast_shape->model->moderate || !start.moderate || !end.moderate) v.unsure();
+    }
+    if (!exact) v.unsure();
+    kairos_world_hit hit;
+    poison(hit);
+    const char* fn = kind == 0 ? "kairos_world_ray_cast" : "kairos_world_shape_cast";
+    const int32_t status = observe(fn, [&] {
+        return kind == 0 ? kairos_world_ray_cast(world_, origin, translation, use_filter ? &filter : nullptr, &hit)
+                         : kairos_world_shape_cast(world_, cast_shape->shape.get(), &motion,
+                                                   use_filter ? &filter : nullptr,
+                                                   settings.use ? &settings.settings : nullptr, &hit);
+    });
+    v.check(status, fn);
+    if (status != KAIROS_OK) {
+        if (!poisoned(hit)) violation("%s failed but wrote *out", fn);
+        return;
+    }
+    if (hit.hit == 0) {
+        if (hit.id != 0 || hit.user_data != 0 || hit.toi != 1)
+            violation("%s: a miss with id %llu, toi %.17g", fn, static_cast<unsigned long long>(hit.id), hit.toi);
+    } else {
+        const Object* o = find(hit.id);
+        if (hit.hit != 1 || o == nullptr || !sees(*o) || hit.user_data != o->user)
+            violation("%s: hit %d on id %llu (user data %llu), not a live object the filter sees", fn, hit.hit,
+                      static_cast<unsigned long long>(hit.id), static_cast<unsigned long long>(hit.user_data));
+        if (!(hit.toi >= 0 && hit.toi <= 1)) violation("%s: toi %.17g", fn, hit.toi);
+        const double nn = hit.normal.x * hit.normal.x + hit.normal.y * hit.normal.y + hit.normal.z * hit.normal.z;
+        if (!(std::fabs(nn - 1) <= 1e-6)) violation("%s: normal %s is not unit", fn, show(hit.normal));
+    }
+    if (!exact || v.expects_error()) return;
+    // Brute force: the earliest hit of the pair query over every object the filter sees (ties:
+    // the smaller id). A shape cast is the shape cast or the motion cast, as the world picks.
+    const kairos_query_settings world_settings{sizeof(kairos_query_settings), tolerance_, max_iterations_};
+    const int variants = kind == 0 ? 1 : 2;
+    for (int variant = 0; variant < variants; ++variant) {
+        int hit_any = 0;
+        double best = 1;
+        kairos_object_id best_id = 0;
+        for (const Object& o : live_) {
+            if (!sees(o)) continue;
+            kairos_cast_result r;
+            int32_t st;
+            if (kind == 0) {
+                st = kairos_ray_cast(o.shape, &o.pose.pose, origin, translation, &world_settings, &r);
+            } else if (variant == 0) {
+                const kairos_vec3 t{motion.end.position.x - motion.start.position.x,
+                                    motion.end.position.y - motion.start.position.y,
+                                    motion.end.position.z - motion.start.position.z};
+                st = kairos_shape_cast(cast_shape->shape.get(), &motion.start, t, o.shape, &o.pose.pose, {0, 0, 0},
+                                       settings.use ? &settings.settings : nullptr, &r);
+            } else {
+                const kairos_motion still{o.pose.pose, o.pose.pose};
+                st = kairos_motion_cast(cast_shape->shape.get(), &motion, o.shape, &still,
+                                        settings.use ? &settings.settings : nullptr, &r);
+            }
+            if (st != KAIROS_OK) return;  // beyond range: no brute-force answer
+            if (r.hit && (!hit_any || r.toi < best || (r.toi == best && o.id < best_id))) {
+                hit_any = 1;
+                best = r.toi;
+                best_id = o.id;
+            }
+        }
+        if (hit_any == hit.hit && (!hit_any || (best_id == hit.id && best == hit.toi))) return;  // agrees
+        if (variant + 1 == variants)
+            violation("%s: hit %d id %llu toi %.17g; brute force hit %d id %llu toi %.17g", fn, hit.hit,
+                      static_cast<unsigned long long>(hit.id), hit.toi, hit_any,
+                      static_cast<unsigned long long>(best_id), best);
+    }
+}
+
 void WorldFuzz::run() {
     if (!create()) return;
     ShapeBuilder builder(in_, /*max_depth=*/1, /*thorough=*/false);
@@ -631,7 +801,7 @@ void WorldFuzz::run() {
                 stats();
                 break;
             default:
-                switch (in_.pick(4)) {
+                switch (in_.pick(6)) {
                     case 0:
                         null_arguments();
                         break;
@@ -641,8 +811,11 @@ void WorldFuzz::run() {
                     case 2:
                         set_static_or_filter();
                         break;
-                    default:
+                    case 3:
                         getters();
+                        break;
+                    default:
+                        queries();
                         break;
                 }
                 break;

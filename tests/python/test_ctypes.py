@@ -415,6 +415,46 @@ class KairosCtypesTest(unittest.TestCase):
         self.assertIn("min.x", self.last_error())
         self.assertEqual(count.value, 1)
 
+    def test_world_task_hook(self):
+        # An engine's scheduler written in Python: it runs every range of the task itself, in two
+        # halves, and returns NULL (so finish_task is never called).
+        lib = self.lib
+        task_type = ctypes.CFUNCTYPE(None, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p)
+        enqueue_type = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint32, ctypes.c_uint32,
+                                        ctypes.c_void_p, ctypes.c_void_p)
+        finish_type = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_void_p)
+        counts = []
+
+        def enqueue(task, count, min_range, task_context, user_context):
+            run = ctypes.cast(task, task_type)
+            half = count // 2
+            run(half, count, 1, task_context)
+            run(0, half, 0, task_context)
+            counts.append(count)
+            return None
+
+        def finish(user_task, user_context):
+            counts.append(-1)
+
+        enqueue_cb, finish_cb = enqueue_type(enqueue), finish_type(finish)
+        settings = WorldSettings()
+        lib.kairos_world_settings_init(ctypes.byref(settings))
+        settings.worker_count = 2
+        settings.enqueue_task = ctypes.cast(enqueue_cb, ctypes.c_void_p)
+        settings.finish_task = ctypes.cast(finish_cb, ctypes.c_void_p)
+        world = WorldP()
+        self.assertEqual(lib.kairos_world_create(ctypes.byref(settings), ctypes.byref(world)), KAIROS_OK,
+                         self.last_error())
+        self.addCleanup(lib.kairos_world_destroy, world)
+        box = self.make(lib.kairos_shape_box, Vec3(1.0, 1.0, 1.0))
+        for i in range(6):  # a row of overlapping boxes: five pairs
+            object_id = ctypes.c_uint64(0)
+            pose = identity_pose(1.5 * i)
+            self.assertEqual(lib.kairos_world_add(world, box, ctypes.byref(pose), i, ctypes.byref(object_id)),
+                             KAIROS_OK)
+        self.assertEqual(lib.kairos_world_step(world), KAIROS_OK, self.last_error())
+        self.assertEqual(counts, [5])
+
     def test_distance_when_implemented(self):
         a = self.make(self.lib.kairos_shape_sphere, 1.0)
         b = self.make(self.lib.kairos_shape_box, Vec3(1.0, 1.0, 1.0))

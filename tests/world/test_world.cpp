@@ -601,8 +601,8 @@ struct TestScheduler {
             return nullptr;
         }
         uint32_t worker = 0;
-        for (auto [b, e] : ranges) {
-            const uint32_t w = worker++ % 3;
+        for (const auto& range : ranges) {
+            const uint32_t b = range.first, e = range.second, w = worker++ % 3;
             self.threads.emplace_back([=] { task(b, e, w, task_context); });
         }
         return &self;
