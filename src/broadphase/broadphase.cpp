@@ -131,6 +131,20 @@ void BroadPhase::on_query_box(const Aabb& q, std::vector<uint32_t>& out) const {
     }
 }
 
+bool BroadPhase::move(uint32_t id, const Aabb& box_start, const Aabb& box_end) {
+    if (!contains(id) || !valid_box(box_start) || !valid_box(box_end) || records_[id].is_static) return false;
+    Record& r = records_[id];
+    if (!(box_start.min == r.box.min && box_start.max == r.box.max)) {
+        // Only an object that then moves is re-examined by the step (see step()).
+        if (r.state == State::Live && restarts_moving_objects() && !same_box(box_start, box_end)) {
+            r.box = box_start;
+        } else {
+            teleport(id, box_start);
+        }
+    }
+    return move(id, box_end);
+}
+
 void BroadPhase::flush() {
     // The lists may hold ids whose state changed since they were queued.
     std::sort(pending_adds_.begin(), pending_adds_.end());

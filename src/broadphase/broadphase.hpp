@@ -142,6 +142,10 @@ public:
     bool teleport(uint32_t id, const Aabb& box);
     // The box at the end of the coming step (t = 1).
     bool move(uint32_t id, const Aabb& box_end);
+    // A move that also replaces the box at the start of the coming step (as a teleport would;
+    // the world's turning objects get a new start box every step). A broad phase whose step
+    // re-examines every moving object anyway skips the teleport's own work.
+    bool move(uint32_t id, const Aabb& box_start, const Aabb& box_end);
 
     // Sweeps the step and returns its pairs sorted by (a, b), each once. The buffer is owned by
     // the broad phase and valid until the next call of a non-const member.
@@ -194,6 +198,9 @@ protected:
     // Fills pairs_ (any order, duplicates allowed: the base keeps the earliest) and the
     // counters; records still hold the start boxes and moving_ the moved ids (deduplicated).
     virtual void on_step() = 0;
+    // True when step() re-keys every moving object and re-tests all its pairs, so a new start box
+    // needs no work before it (move with a start box then skips on_teleport).
+    virtual bool restarts_moving_objects() const { return false; }
     // query_box's work: by default every record.
     virtual void on_query_box(const Aabb& q, std::vector<uint32_t>& out) const;
     // A present object's static flag has just changed (records hold the new one): by default

@@ -311,19 +311,13 @@ void SpacetimeSap::on_query_box(const Aabb& q, std::vector<uint32_t>& out) const
 
 void SpacetimeSap::query_column_box(const Column& c, int32_t cy, int32_t cz, int32_t y0, int32_t z0, const Aabb& q,
                                     std::vector<uint32_t>& out) const {
-    // Entries are sorted by lo and none is longer than max_len: those reaching q start after this
-    // (a few ulps lower, as query_column, for the rounding of hi - lo and of the subtraction).
-    double first = q.min.x - c.max_len;
-    first -= (std::fabs(first) + c.max_len) * 0x1p-50;
-    auto it = std::lower_bound(c.entries.begin(), c.entries.end(), first,
-                               [](const Entry& e, double v) { return e.lo < v; });
-    for (; it != c.entries.end() && it->lo <= q.max.x; ++it) {
-        if (it->hi < q.min.x) continue;
-        const uint32_t id = it->id;
+    for_entries_near(c, q, [&](const Entry& e) {
+        if (e.hi < q.min.x) return;
+        const uint32_t id = e.id;
         const Member& m = members_[id];
-        if (cy != std::max(m.y0, y0) || cz != std::max(m.z0, z0)) continue;
+        if (cy != std::max(m.y0, y0) || cz != std::max(m.z0, z0)) return;
         if (records_[id].state == State::Live && boxes_overlap(records_[id].box, q)) out.push_back(id);
-    }
+    });
 }
 
 }  // namespace kairos::broadphase_detail

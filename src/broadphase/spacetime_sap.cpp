@@ -51,6 +51,7 @@ void SpacetimeSap::on_flush() {
     if (members_.size() < records_.size()) {
         members_.resize(records_.size());
         moving_flag_.resize(records_.size(), 0);
+        stale_flag_.resize(records_.size(), 0);
         pending_.resize(records_.size(), 0);
         leaving_.resize(records_.size(), 0);
         entry_.resize(records_.size());
@@ -60,6 +61,7 @@ void SpacetimeSap::on_flush() {
         overlaps_.erase_pairs_of(removed, doomed_);
         for (uint32_t id : pending_removes_) unlist(id);
         std::erase_if(stale_, removed);
+        for (uint32_t id : pending_removes_) stale_flag_[id] = 0;
     }
     if (pending_adds_.empty()) return;
     if (cell_size_ == 0) {
@@ -116,26 +118,31 @@ void SpacetimeSap::on_flush() {
 }
 
 void SpacetimeSap::on_teleport(uint32_t id, const Aabb& old_box) {
-    (void)old_box;
-    // Drop its pairs: partners share one of its columns (or it is large: all of them).
+    // Drop its pairs: partners share one of its columns (or it is large: all of them), and their
+    // boxes overlapped its old box. A column entry's keyed box holds its object's box, so an
+    // entry whose keyed box misses the box (the entry's own data: no lookup) has no pair with it.
     Member& m = members_[id];
     auto drop = [&](uint32_t other) {
         if (other != id) overlaps_.erase(pair_key(id, other));
+    };
+    auto entry_meets = [](const Entry& e, const Aabb& q) {
+        return !(e.lo > q.max.x || e.hi < q.min.x || e.span[0] > q.max.y || e.span[1] < q.min.y ||
+                 e.span[2] > q.max.z || e.span[3] < q.min.z);
     };
     if (m.large) {
         for (uint32_t other = 0; other < members_.size(); ++other) {
             if (members_[other].listed) drop(other);
         }
     } else {
-        for_columns(id, [&](uint32_t c) {
-            for (const Entry& e : columns_[c].entries) drop(e.id);
-        });
+        for_columns(id, [&](uint32_t c) { for_entries_near(columns_[c], old_box, [&](const Entry& e) {
+            if (entry_meets(e, old_box)) drop(e.id);
+        }); });
         for (uint32_t l : large_) drop(l);
     }
     unlist(id);
     const Aabb& b = records_[id].box;
     list(id, b);
-    std::erase(stale_, id);
+    stale_flag_[id] = 0;  // keyed by its box now (it may stay listed in stale_)
     auto add = [&](uint32_t other) {
         if (other != id && members_[other].listed && !both_static(id, other) && boxes_overlap(b, records_[other].box))
             overlaps_.insert(pair_key(id, other));
@@ -143,9 +150,9 @@ void SpacetimeSap::on_teleport(uint32_t id, const Aabb& old_box) {
     if (m.large) {
         for (uint32_t other = 0; other < members_.size(); ++other) add(other);
     } else {
-        for_columns(id, [&](uint32_t c) {
-            for (const Entry& e : columns_[c].entries) add(e.id);
-        });
+        for_columns(id, [&](uint32_t c) { for_entries_near(columns_[c], b, [&](const Entry& e) {
+            if (entry_meets(e, b)) add(e.id);
+        }); });
         for (uint32_t l : large_) add(l);
     }
 }
@@ -179,10 +186,12 @@ void SpacetimeSap::on_step() {
     queued_.clear();
     rekeys_.clear();
     for (uint32_t id : stale_) {
-        if (!moving_flag_[id] && records_[id].state == State::Live) rekeys_.push_back(id);
+        if (stale_flag_[id] && !moving_flag_[id] && records_[id].state == State::Live) rekeys_.push_back(id);
+        stale_flag_[id] = 0;
     }
     rekeys_.insert(rekeys_.end(), moving_.begin(), moving_.end());
     stale_.assign(moving_.begin(), moving_.end());
+    for (uint32_t id : stale_) stale_flag_[id] = 1;
     rekey_all();
     // Per column: a full sweep when many of its entries move; otherwise each moving entry looks
     // up its neighbours along x (entries starting within the column's longest entry before it),

@@ -3,7 +3,9 @@
 // default. Internal to broadphase/ (namespace broadphase_detail).
 #pragma once
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -35,6 +37,8 @@ public:
     SpacetimeSap() : BroadPhase(BroadPhaseKind::SpacetimeSap) {}
     std::string check_invariants() const override;
     double query_cell_size() const override { return cell_size_; }
+    // on_step dooms every pair of a moving object and re-keys it by its swept box.
+    bool restarts_moving_objects() const override { return true; }
 
     static constexpr int64_t kMaxColumns = 64;
 
@@ -79,6 +83,16 @@ private:
         }
         for (int32_t cy = m.y0; cy <= m.y1; ++cy)
             for (int32_t cz = m.z0; cz <= m.z1; ++cz) f(column_at(cy, cz));
+    }
+    // Calls f(entry) for the entries of a sorted column whose x interval may reach q's (those
+    // starting within the column's longest entry before q, a few ulps lower for rounding).
+    template <class F>
+    static void for_entries_near(const Column& c, const Aabb& q, F&& f) {
+        double from = q.min.x - c.max_len;
+        from -= (std::fabs(from) + c.max_len) * 0x1p-50;
+        auto it = std::lower_bound(c.entries.begin(), c.entries.end(), from,
+                                   [](const Entry& e, double x) { return e.lo < x; });
+        for (; it != c.entries.end() && !(it->lo > q.max.x); ++it) f(*it);
     }
     // Sets the member's columns from its keyed box (creating columns as needed).
     void place(uint32_t id, const Aabb& k);
@@ -134,7 +148,9 @@ private:
     std::vector<uint32_t> large_;
     PairSet overlaps_;  // pairs whose boxes overlap now, not both static
     std::vector<uint8_t> moving_flag_;
-    std::vector<uint32_t> stale_;   // objects keyed by their last swept box
+    std::vector<uint32_t> stale_;   // objects keyed by their last swept box (a teleport may leave
+                                    // one listed here after re-keying it: then its flag is 0)
+    std::vector<uint8_t> stale_flag_;  // by id: listed in stale_ and still keyed by the swept box
     std::vector<uint32_t> queued_;  // columns to sort and sweep
     uint32_t pass_ = 0;
     struct Active {

@@ -254,11 +254,7 @@ void World::step() {
         sweeps_[index] = sweep_of(*o.shape, o.pose, o.end, o.loose ? nullptr : &o.box, &start, &end);
         swept_[index] = 1;
         moved_[w++] = index;
-        if (!(start.min == o.box.min && start.max == o.box.max)) {
-            broad_->teleport(index, start);
-            o.box = start;
-        }
-        broad_->move(index, end);
+        broad_->move(index, start, end);
         o.box = end;  // what the broad phase holds after the step
         ++counters_.moving_objects;
         if (sweeps_[index].rotates) ++counters_.rotating_objects;

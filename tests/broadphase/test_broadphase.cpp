@@ -645,5 +645,49 @@ TEST(BroadPhase, SwapsPerMovingObjectInAUniformScene) {
     }
 }
 
+// move(id, start, end) against teleport(id, start) then move(id, end): the same pairs and first
+// times, bit for bit, and a sound structure, in every broad phase; starts equal to ends (a ball
+// turning in place) and unchanged starts included.
+TEST(BroadPhase, MoveWithAStartBoxEqualsTeleportThenMove) {
+    for (BroadPhaseKind kind : {BroadPhaseKind::SpacetimeSap, BroadPhaseKind::EncapsulatingSap,
+                                BroadPhaseKind::BruteForce, BroadPhaseKind::SpacetimeSapQueued}) {
+        SCOPED_TRACE(to_string(kind));
+        Rng rng(4242);
+        auto a = BroadPhase::create(kind), b = BroadPhase::create(kind);
+        std::vector<Aabb> box(300);
+        auto around = [&](Vec3 c, double h) { return Aabb{c - Vec3{h, h, h}, c + Vec3{h, h, h}}; };
+        for (uint32_t id = 0; id < box.size(); ++id) {
+            box[id] = around(rng.in_cube(15), rng.uniform(0.2, 1));
+            ASSERT_TRUE(a->add(id, box[id], id % 13 == 0));
+            ASSERT_TRUE(b->add(id, box[id], id % 13 == 0));
+        }
+        int silent = 0;
+        for (int step = 0; step < 12; ++step) {
+            for (uint32_t id = 0; id < box.size(); ++id) {
+                if (id % 13 == 0 || rng.below(4) == 0) continue;
+                const Vec3 c = 0.5 * (box[id].min + box[id].max);
+                const double h = 0.5 * (box[id].max.x - box[id].min.x);
+                const unsigned k = rng.below(4);
+                const Aabb start = k == 0 ? box[id] : around(c + rng.in_cube(0.2), h * rng.uniform(0.9, 1.3));
+                const Aabb end = k == 1 ? start : around(c + rng.in_cube(1.5), h);
+                silent += k >= 2 ? 1 : 0;
+                ASSERT_TRUE(a->move(id, start, end));
+                ASSERT_TRUE(b->teleport(id, start));
+                ASSERT_TRUE(b->move(id, end));
+                box[id] = end;
+            }
+            const std::vector<BroadPhasePair> pa = a->step();
+            const std::vector<BroadPhasePair>& pb = b->step();
+            ASSERT_EQ(pa.size(), pb.size()) << "step " << step;
+            for (std::size_t i = 0; i < pa.size(); ++i)
+                ASSERT_TRUE(pa[i].a == pb[i].a && pa[i].b == pb[i].b &&
+                            std::bit_cast<uint64_t>(pa[i].t_first) == std::bit_cast<uint64_t>(pb[i].t_first))
+                    << "step " << step << " pair " << i;
+            ASSERT_EQ(a->check_invariants(), "") << "step " << step;
+        }
+        EXPECT_GT(silent, 1000);
+    }
+}
+
 }  // namespace
 }  // namespace kairos
