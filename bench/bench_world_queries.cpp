@@ -12,11 +12,14 @@
 // step (wall clock: the narrow phase's is what the workers share).
 //
 // Run: build/release/bench/bench_world_queries [--benchmark_filter=...]
+//      build/release/bench/bench_world_queries --interleaved   (the worker scaling, robust ratios)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -139,41 +142,37 @@ void run_query(benchmark::State& state, Query kind, bool brute) {
     state.counters["hits_per_query"] = static_cast<double>(hits) / static_cast<double>(queries);
 }
 
-// n objects, all moving and turning every step; the same moves whatever the worker count.
-void run_workers(benchmark::State& state) {
-    const int n = static_cast<int>(state.range(0));
-    WorldSettings settings;
-    settings.worker_count = static_cast<uint32_t>(state.range(1));
-    World world(settings);
-    Rng rng(0xfeed + static_cast<uint64_t>(n));
-    const double half = 0.5 * std::cbrt(4.0 * n);
+// n objects (boxes, spheres, capsules) in a world, all moving and turning every step; the same
+// moves whatever the worker count.
+struct SpinningScene {
+    World world;
     std::vector<ShapePtr> shapes;
     std::vector<uint64_t> ids;
     std::vector<Pose> pose;
     std::vector<Vec3> velocity, spin_axis;
-    for (int i = 0; i < n; ++i) {
-        switch (rng.below(3)) {
-            case 0: shapes.push_back(ShapePtr(new BoxShape({0.4, 0.3, 0.2}))); break;
-            case 1: shapes.push_back(ShapePtr(new SphereShape(0.35))); break;
-            default: shapes.push_back(ShapePtr(new CapsuleShape(0.2, 0.3))); break;
-        }
-        pose.push_back({rng.in_cube(half), rng.orientation()});
-        velocity.push_back(rng.in_cube(0.15));
-        spin_axis.push_back(rng.direction());
-        ids.push_back(world.add(*shapes.back(), pose.back(), static_cast<uint64_t>(i)));
-    }
-    double broad = 0, narrow = 0;
-    uint64_t steps = 0, contacts = 0, queries = 0;
-    bool settled = false;  // the first step inserts every object: it is not timed
-    for (auto _ : state) {
-        if (!settled) {
-            state.PauseTiming();
-            world.step();
-            state.ResumeTiming();
-            settled = true;
-        }
+    double half;
+    SpinningScene(int n, uint32_t workers) : world(settings(workers)), half(0.5 * std::cbrt(4.0 * n)) {
+        Rng rng(0xfeed + static_cast<uint64_t>(n));
         for (int i = 0; i < n; ++i) {
-            const auto k = static_cast<std::size_t>(i);
+            switch (rng.below(3)) {
+                case 0: shapes.push_back(ShapePtr(new BoxShape({0.4, 0.3, 0.2}))); break;
+                case 1: shapes.push_back(ShapePtr(new SphereShape(0.35))); break;
+                default: shapes.push_back(ShapePtr(new CapsuleShape(0.2, 0.3))); break;
+            }
+            pose.push_back({rng.in_cube(half), rng.orientation()});
+            velocity.push_back(rng.in_cube(0.15));
+            spin_axis.push_back(rng.direction());
+            ids.push_back(world.add(*shapes.back(), pose.back(), static_cast<uint64_t>(i)));
+        }
+        world.step();  // inserts every object
+    }
+    static WorldSettings settings(uint32_t workers) {
+        WorldSettings s;
+        s.worker_count = workers;
+        return s;
+    }
+    void step() {
+        for (std::size_t k = 0; k < ids.size(); ++k) {
             Pose& p = pose[k];
             p.position = p.position + velocity[k];
             for (int a = 0; a < 3; ++a)  // stay in the cube: bounce
@@ -182,6 +181,19 @@ void run_workers(benchmark::State& state) {
             world.move(ids[k], p);
         }
         world.step();
+    }
+};
+
+void run_workers(benchmark::State& state) {
+    const int n = static_cast<int>(state.range(0));
+    state.PauseTiming();
+    SpinningScene scene(n, static_cast<uint32_t>(state.range(1)));
+    state.ResumeTiming();
+    World& world = scene.world;
+    double broad = 0, narrow = 0;
+    uint64_t steps = 0, contacts = 0, queries = 0;
+    for (auto _ : state) {
+        scene.step();
         broad += world.counters().broad_phase_seconds;
         narrow += world.counters().narrow_phase_seconds;
         contacts += world.contacts().size();
@@ -215,7 +227,34 @@ void register_all() {
 
 }  // namespace
 
+// Interleaved: one world per worker count over the same scene, stepped in turn, so that a
+// shared machine's swings slow them alike; prints each phase's wall time per step and the
+// narrow phase's speed-up over one worker.
+void run_interleaved(int n, int steps) {
+    std::vector<std::unique_ptr<SpinningScene>> scenes;
+    const uint32_t counts[] = {1, 2};
+    for (uint32_t w : counts) scenes.push_back(std::make_unique<SpinningScene>(n, w));
+    std::vector<double> broad(scenes.size()), narrow(scenes.size());
+    for (int s = 0; s < steps; ++s)
+        for (std::size_t k = 0; k < scenes.size(); ++k) {
+            scenes[k]->step();
+            broad[k] += scenes[k]->world.counters().broad_phase_seconds;
+            narrow[k] += scenes[k]->world.counters().narrow_phase_seconds;
+        }
+    for (std::size_t k = 0; k < scenes.size(); ++k)
+        std::printf("n %6d  workers %u  broad %8.2f ms  narrow %8.2f ms  narrow speed-up %.2fx  (%zu casts per step)\n", n,
+                    counts[k], 1e3 * broad[k] / steps, 1e3 * narrow[k] / steps, narrow[0] / narrow[k],
+                    static_cast<std::size_t>(scenes[k]->world.counters().narrow_phase_queries));
+}
+
 int main(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--interleaved") == 0) {
+            run_interleaved(10000, 20);
+            run_interleaved(100000, 6);
+            return 0;
+        }
+    }
     register_all();
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();

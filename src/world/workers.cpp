@@ -92,8 +92,9 @@ void Workers::run_erased(uint32_t count, uint32_t min_range, Erased fn, void* co
         fn(context, 0, count);
         return;
     } else {
-        // A few ranges per thread, so that uneven items (a long cast beside short ones) balance.
-        const auto ways = static_cast<uint32_t>(4 * (threads_.size() + 1));
+        // Many ranges per thread, so that uneven items balance (a turning pair's motion cast can
+        // cost a hundred times a still pair's); claiming one is an atomic add.
+        const auto ways = static_cast<uint32_t>(32 * (threads_.size() + 1));
         job.chunk = std::max(min_range, (count + ways - 1) / ways);
         {
             std::lock_guard<std::mutex> lock(mutex_);
