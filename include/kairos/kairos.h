@@ -445,8 +445,8 @@ KAIROS_API int32_t kairos_world_get_user_data(const kairos_world* w, kairos_obje
  * only the objects whose filter collides with *filter by the rule above, so category_bits says
  * what the query is and mask_bits what it sees), and changes nothing. They are const: several
  * threads may query one world at once while no thread changes it. Found through the broad phase
- * (the default broad phase visits only the columns the query reaches; the others scan every
- * object). */
+ * (the space-time sweeps visit only the columns, or the stretch of their sorted axis, that the
+ * query reaches; the encapsulating and brute-force references scan every object). */
 
 /* The earliest hit of a world query. Frozen layout. On a miss: hit 0, id 0, user_data 0, toi 1,
  * point and normal 0. */

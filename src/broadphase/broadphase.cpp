@@ -76,6 +76,7 @@ bool BroadPhase::add(uint32_t id, const Aabb& box, bool is_static) {
     Record& r = records_[id];
     r.box = box;
     r.box_end = box;
+    note_extent(box);
     r.state = State::PendingAdd;
     r.is_static = is_static;
     r.moving = false;
@@ -100,6 +101,7 @@ bool BroadPhase::teleport(uint32_t id, const Aabb& box) {
     const Aabb old = r.box;
     r.box = box;
     r.box_end = box;
+    note_extent(box);
     if (r.state == State::Live) on_teleport(id, old);
     return true;
 }
@@ -108,6 +110,7 @@ bool BroadPhase::move(uint32_t id, const Aabb& box_end) {
     if (!contains(id) || !valid_box(box_end) || records_[id].is_static) return false;
     Record& r = records_[id];
     r.box_end = box_end;
+    note_extent(box_end);
     if (!r.moving) {
         r.moving = true;
         moving_.push_back(id);
@@ -138,6 +141,7 @@ bool BroadPhase::move(uint32_t id, const Aabb& box_start, const Aabb& box_end) {
         // Only an object that then moves is re-examined by the step (see step()).
         if (r.state == State::Live && restarts_moving_objects() && !same_box(box_start, box_end)) {
             r.box = box_start;
+            note_extent(box_start);
         } else {
             teleport(id, box_start);
         }

@@ -161,8 +161,9 @@ public:
 
     // Appends to `out` the id of every object present (added, not removed) whose current box
     // overlaps q (closed boxes), each once, in no particular order. Uses the broad phase's own
-    // structure where it has one for this (the space-time sweep in regions: the columns q
-    // touches); the others scan every object. q: finite, min <= max.
+    // structure (the space-time sweep in regions: the columns q touches; the sorted endpoints:
+    // the stretch of x before q within the longest extent); the references (encapsulating, brute
+    // force) scan every object. q: finite, min <= max.
     void query_box(const Aabb& q, std::vector<uint32_t>& out) const { on_query_box(q, out); }
     // Size of the structure's spatial cells (0: none). A long thin query is best split into
     // pieces about this long on y and z (a query visits every column its box touches).
@@ -222,6 +223,10 @@ protected:
     std::vector<BroadPhasePair> pairs_;
     std::vector<BroadPhasePair> sort_scratch_;
     BroadPhaseCounters counters_;
+    // At least the longest extent along x of any box ever given (add, teleport, move): an
+    // interval sorted by its start that reaches x starts after x minus this.
+    double max_extent_x_ = 0;
+    void note_extent(const Aabb& b) { max_extent_x_ = std::max(max_extent_x_, b.max.x - b.min.x); }
     uint64_t teleport_swaps_since_step_ = 0;
     std::size_t live_count_ = 0;
 };

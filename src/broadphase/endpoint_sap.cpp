@@ -4,6 +4,7 @@
 #include "broadphase/endpoint_sap.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "broadphase/float_bounds.hpp"
@@ -188,6 +189,27 @@ void EndpointSap::on_static_change(uint32_t id) {
             overlaps_.erase(pair_key(id, other));
         else
             overlaps_.insert(pair_key(id, other));
+    }
+}
+
+void EndpointSap::on_query_box(const Aabb& q, std::vector<uint32_t>& out) const {
+    // Objects not flushed yet have no endpoints; pending_adds_ may name one twice.
+    const std::size_t from = out.size();
+    for (uint32_t id : pending_adds_)
+        if (records_[id].state == State::PendingAdd && boxes_overlap(records_[id].box, q)) out.push_back(id);
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());
+    out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(from), out.end()), out.end());
+    // Between steps the x array is sorted by p0, each object's box there; every object has one min
+    // endpoint, and one whose box reaches q starts at most max_extent_x_ before q (a few ulps lower
+    // for the rounding of the subtraction).
+    const auto& arr = axes_[0];
+    double first = q.min.x - max_extent_x_;
+    first -= (std::fabs(first) + max_extent_x_) * 0x1p-50;
+    auto it = std::lower_bound(arr.begin(), arr.end(), first, [](const Endpoint& e, double x) { return e.p0 < x; });
+    for (; it != arr.end() && !(it->p0 > q.max.x); ++it) {
+        if (is_max(*it)) continue;
+        const uint32_t id = owner(*it);
+        if (records_[id].state == State::Live && boxes_overlap(records_[id].box, q)) out.push_back(id);
     }
 }
 

@@ -60,6 +60,8 @@ protected:
     void on_teleport(uint32_t id, const Aabb& old_box) override;
     // Rewrites the owner's tags and its pairs with static objects: O(n) (a scan of the others).
     void on_static_change(uint32_t id) override;
+    // The min endpoints on x within the longest extent before the query box, by binary search.
+    void on_query_box(const Aabb& q, std::vector<uint32_t>& out) const override;
 
     uint32_t& ep(uint32_t id, int axis, bool max) {
         return ep_[id][2 * static_cast<std::size_t>(axis) + (max ? 1u : 0u)];
