@@ -356,7 +356,8 @@ typedef struct kairos_world_settings {
     kairos_query_settings query;     /* narrow-phase settings; frozen layout, never shifts */
     /* ABI version 2 (Kairos 0.2) appends the following; a caller whose struct_size ends before a
      * field gets its default. */
-    uint32_t worker_count;           /* threads that run the narrow phase, the caller's included:
+    uint32_t worker_count;           /* threads that run the narrow phase (and the movers' motion
+                                        bounds), the caller's included:
                                         0 (default) or 1: the calling thread alone; n > 1 (at most
                                         256): n - 1 threads the world starts and keeps, unless
                                         enqueue_task is set (then the engine's threads run it and
@@ -467,7 +468,9 @@ KAIROS_API int32_t kairos_world_ray_cast(const kairos_world* w, kairos_vec3 orig
 /* The earliest object that shape s hits while it follows *motion (world frame, the objects
  * standing still): kairos_shape_cast when the motion's orientations are the same, otherwise
  * kairos_motion_cast (with its tolerance rule), against each object. settings: NULL takes the
- * world's query settings. The shape is only read; the world does not retain it. */
+ * world's query settings. The shape is only read; the world does not retain it. Only objects near
+ * the path are cast: a pair cast that would end on its iteration guard with a conservative hit far
+ * from every object (max_iterations too small) is not made up for. */
 KAIROS_API int32_t kairos_world_shape_cast(const kairos_world* w, const kairos_shape* s, const kairos_motion* motion,
                                            const kairos_filter* filter, const kairos_query_settings* settings,
                                            kairos_world_hit* out);

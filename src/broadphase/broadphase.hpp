@@ -168,6 +168,8 @@ public:
     // Size of the structure's spatial cells (0: none). A long thin query is best split into
     // pieces about this long on y and z (a query visits every column its box touches).
     virtual double query_cell_size() const { return 0; }
+    // At least the largest extent along any axis of any box ever given (it never shrinks).
+    double max_extent() const { return max_extent_; }
     // Changes whether the object is static (never moved; pairs of two static objects are never
     // reported). False, changing nothing, for an id not present, or when making static an object
     // given a move for the coming step.
@@ -226,7 +228,11 @@ protected:
     // At least the longest extent along x of any box ever given (add, teleport, move): an
     // interval sorted by its start that reaches x starts after x minus this.
     double max_extent_x_ = 0;
-    void note_extent(const Aabb& b) { max_extent_x_ = std::max(max_extent_x_, b.max.x - b.min.x); }
+    double max_extent_ = 0;  // the same over the three axes
+    void note_extent(const Aabb& b) {
+        max_extent_x_ = std::max(max_extent_x_, b.max.x - b.min.x);
+        max_extent_ = std::max({max_extent_, b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+    }
     uint64_t teleport_swaps_since_step_ = 0;
     std::size_t live_count_ = 0;
 };

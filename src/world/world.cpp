@@ -249,17 +249,30 @@ void World::step() {
             }
             continue;
         }
-        Aabb start, end;
-        // A box left loose by an earlier turn shrinks to the pose first.
-        sweeps_[index] = sweep_of(*o.shape, o.pose, o.end, o.loose ? nullptr : &o.box, &start, &end);
-        swept_[index] = 1;
+        swept_[index] = 1;  // sweeps_[index] is filled below
         moved_[w++] = index;
-        broad_->move(index, start, end);
-        o.box = end;  // what the broad phase holds after the step
+    }
+    moved_.resize(w);
+    // Their motion bounds on any worker (independent per object), then the broad phase's moves
+    // in order.
+    motion_boxes_.resize(moved_.size());
+    auto sweep_range = [this](uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i < end; ++i) {
+            const uint32_t index = moved_[i];
+            const Object& o = objects_[index];
+            // A box left loose by an earlier turn shrinks to the pose first.
+            sweeps_[index] = sweep_of(*o.shape, o.pose, o.end, o.loose ? nullptr : &o.box, &motion_boxes_[i].start,
+                                      &motion_boxes_[i].end);
+        }
+    };
+    workers_->run(static_cast<uint32_t>(moved_.size()), 256, sweep_range);
+    for (std::size_t i = 0; i < moved_.size(); ++i) {
+        const uint32_t index = moved_[i];
+        broad_->move(index, motion_boxes_[i].start, motion_boxes_[i].end);
+        objects_[index].box = motion_boxes_[i].end;  // what the broad phase holds after the step
         ++counters_.moving_objects;
         if (sweeps_[index].rotates) ++counters_.rotating_objects;
     }
-    moved_.resize(w);
 
     const std::vector<BroadPhasePair>& bp_pairs = broad_->step();
     const BroadPhaseCounters& bc = broad_->counters();

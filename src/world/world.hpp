@@ -73,7 +73,7 @@ struct WorldSettings {
     BroadPhaseKind broad_phase = BroadPhaseKind::SpacetimeSap;
     double tolerance = 1e-10;       // relative accuracy of the casts (docs/c-api.md "Tolerances")
     uint32_t max_iterations = 256;  // a guard only
-    uint32_t worker_count = 0;      // threads of the narrow phase, the caller's included (Workers)
+    uint32_t worker_count = 0;      // threads of the motion bounds and narrow phase, the caller's included
     TaskHook task_hook;             // an engine's scheduler instead of the world's own threads
 };
 
@@ -199,9 +199,11 @@ private:
     void narrow_job(const NarrowJob& job, NarrowOutcome& out) const;
     Sweep sweep_of(const Shape& shape, const Pose& pose, const Pose& end, const Aabb* box_now, Aabb* out_start,
                    Aabb* out_end) const;
-    // The slots whose broad-phase box the box swept linearly over s meets, and the filter admits,
-    // as (first time they meet, slot), sorted: a lower bound on the time of any contact.
-    void sweep_candidates(const SweptAabb& s, const Filter* filter,
+    // The slots whose broad-phase box, grown by `pad`, the box swept linearly over s (grown by
+    // `pad` too) meets, and the filter admits, as (first time they meet, slot), sorted: a lower
+    // bound on the time of any hit the casts report within `pad` of contact.
+    double hit_pad(double tolerance, double reach) const;
+    void sweep_candidates(const SweptAabb& s, double pad, const Filter* filter,
                           std::vector<std::pair<double, uint32_t>>& out) const;
     void narrow_phase(const std::vector<BroadPhasePair>& bp_pairs);
 
@@ -216,6 +218,7 @@ private:
     std::vector<Sweep> sweeps_;   // by slot, filled for moving objects during a step
     std::vector<uint8_t> swept_;  // by slot: sweeps_ holds this step's motion
     std::vector<CachedAxis> axes_, next_axes_;
+    std::vector<SweptAabb> motion_boxes_;  // by position in moved_: boxes at t = 0 and t = 1
     std::vector<NarrowJob> jobs_;
     std::vector<NarrowOutcome> outcomes_;
     std::unique_ptr<Workers> workers_;

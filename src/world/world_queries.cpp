@@ -45,9 +45,20 @@ void keep_earliest(WorldHit& best, const WorldHit& h) {
 
 }  // namespace
 
-void World::sweep_candidates(const SweptAabb& s, const Filter* filter,
+// The casts report a hit once the shapes are within their tolerance of each other, relative to
+// their sizes (a shape cast: of the query's extent and motion and the object's; a motion cast:
+// tolerance times the smaller bounding radius), so an object that far from the query's path is
+// still a candidate. The broad phase's boxes carry the world's tolerance already; a query with a
+// larger one needs this pad (reach: the query's extent and motion).
+double World::hit_pad(double tolerance, double reach) const {
+    return tolerance * (reach + 2 * broad_->max_extent());
+}
+
+void World::sweep_candidates(const SweptAabb& swept, double pad, const Filter* filter,
                              std::vector<std::pair<double, uint32_t>>& out) const {
     out.clear();
+    const Vec3 p{pad, pad, pad};
+    const SweptAabb s{{swept.start.min - p, swept.start.max + p}, {swept.end.min - p, swept.end.max + p}};
     // The broad phase's columns run along x: a query visits every column its box touches on y
     // and z, so a long oblique sweep is split into pieces about a column wide there.
     const double cell = broad_->query_cell_size();
@@ -72,8 +83,10 @@ void World::sweep_candidates(const SweptAabb& s, const Filter* filter,
         const Object& o = objects_[slot];
         if (!o.alive || (filter != nullptr && !filters_collide(*filter, o.filter))) continue;
         const Aabb* box = broad_->box(slot);
+        if (box == nullptr) continue;
+        const Aabb grown_box{box->min - p, box->max + p};
         double t = 0;
-        if (box != nullptr && first_overlap_time(s, SweptAabb{*box, *box}, &t)) out.push_back({t, slot});
+        if (first_overlap_time(s, SweptAabb{grown_box, grown_box}, &t)) out.push_back({t, slot});
     }
     std::sort(out.begin(), out.end());
 }
@@ -95,7 +108,7 @@ void World::query_box(const Aabb& q, const Filter* filter, std::vector<uint64_t>
 WorldHit World::ray_cast(Vec3 origin, Vec3 translation, const Filter* filter) const {
     const Vec3 end = origin + translation;
     std::vector<std::pair<double, uint32_t>> candidates;
-    sweep_candidates({{origin, origin}, {end, end}}, filter, candidates);
+    sweep_candidates({{origin, origin}, {end, end}}, hit_pad(settings_.tolerance, 0), filter, candidates);
     WorldHit best;
     for (const auto& [t, slot] : candidates) {
         if (best.hit && t > best.toi) break;  // boxes hold their objects: no later box hits earlier
@@ -114,7 +127,13 @@ WorldHit World::shape_cast(const Shape& shape, const Pose& start, const Pose& en
     SweptAabb swept;
     const Sweep sw = sweep_of(shape, start, end, nullptr, &swept.start, &swept.end);
     std::vector<std::pair<double, uint32_t>> candidates;
-    sweep_candidates(swept, filter, candidates);
+    // The query's extent, motion and bounding radius about its origin (a motion cast's tolerance
+    // is relative to the smaller of the two radii).
+    const double radius = std::sqrt(3.0) * std::fmax(max_abs(swept.start.min - start.position),
+                                                     max_abs(swept.start.max - start.position));
+    const double reach = std::fmax(max_abs(swept.start.max - swept.start.min), max_abs(swept.end.max - swept.end.min)) +
+                         max_abs(sw.translation) + radius;
+    sweep_candidates(swept, hit_pad(tolerance, reach), filter, candidates);
     const Motion motion(start, end);
     WorldHit best;
     for (const auto& [t, slot] : candidates) {

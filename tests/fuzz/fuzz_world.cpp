@@ -672,6 +672,7 @@ void WorldFuzz::queries() {
         if (in_.pick(2)) {  // a pure translation
             end.pose.orientation = start.pose.orientation;
             end.pose.position.x += 3;
+            end = classify(end.pose);
         }
         motion = {start.pose, end.pose};
         settings = make_settings(in_);
@@ -734,6 +735,9 @@ void WorldFuzz::queries() {
                                         settings.use ? &settings.settings : nullptr, &r);
             }
             if (st != KAIROS_OK) return;  // beyond range: no brute-force answer
+            // The iteration guard's answer is a conservative hit at the last bound, however far
+            // the shapes are; the world casts only the objects near the path, so no comparison.
+            if (r.termination == KAIROS_TERMINATION_MAX_ITERATIONS) return;
             if (r.hit && (!hit_any || r.toi < best || (r.toi == best && o.id < best_id))) {
                 hit_any = 1;
                 best = r.toi;
