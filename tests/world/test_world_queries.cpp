@@ -243,10 +243,12 @@ TEST(WorldQueries, ShapeCastMatchesBruteForce) {
         SCOPED_TRACE(label(kind, seed));
         Scene s(kind, seed, 400, 7);
         Rng rng(seed ^ 0x123);
-        const double tol = 1e-8;
         const uint32_t max_it = 256;
         int hits = 0, turning_hits = 0, casts = 0;
-        for (int q = 0; q < 120; ++q) {
+        for (int q = 0; q < 160; ++q) {
+            // A quarter at a coarse tolerance, far above the world's: hits come that far before
+            // contact, from objects whose boxes the path misses by less.
+            const double tol = q % 4 == 3 ? 0.3 : 1e-8;
             const ShapePtr shape = random_shape(rng, rng.uniform(0.5, 2));
             const Pose start{rng.in_cube(9), rng.orientation()};
             Pose end{start.position + rng.direction() * rng.uniform(1, 20), start.orientation};
