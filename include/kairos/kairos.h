@@ -388,7 +388,9 @@ typedef struct kairos_step_stats {
     double   narrow_phase_seconds;  /* wall time of the narrow phase */
 } kairos_step_stats;
 
-/* Fills *s with struct_size and defaults. NULL is ignored. */
+/* Fills *s with struct_size and defaults. NULL is ignored. Binaries linked against 0.1, whose
+ * struct ends before worker_count, keep the 0.1 version of this function (symbol version
+ * KAIROS_0), which writes only that struct; new ones get KAIROS_0.2. */
 KAIROS_API void kairos_world_settings_init(kairos_world_settings* s);
 /* Creates an empty world; settings NULL means defaults. Free it with kairos_world_destroy. */
 KAIROS_API int32_t kairos_world_create(const kairos_world_settings* settings, kairos_world** out);
