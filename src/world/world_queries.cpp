@@ -50,8 +50,10 @@ void keep_earliest(WorldHit& best, const WorldHit& h) {
 // tolerance times the smaller bounding radius), so an object that far from the query's path is
 // still a candidate. The broad phase's boxes carry the world's tolerance already; a query with a
 // larger one needs this pad (reach: the query's extent and motion).
+// The shape cast's size is seen from the ray point, so it grows with the gap g itself: a hit
+// comes once g <= tolerance (g + extents), that is g <= tolerance / (1 - tolerance) extents.
 double World::hit_pad(double tolerance, double reach) const {
-    return tolerance * (reach + 2 * broad_->max_extent());
+    return tolerance / (1 - tolerance) * (reach + 2 * broad_->max_extent());
 }
 
 void World::sweep_candidates(const SweptAabb& swept, double pad, const Filter* filter,

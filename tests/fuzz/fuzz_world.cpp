@@ -712,6 +712,8 @@ void WorldFuzz::queries() {
     // Brute force: the earliest hit of the pair query over every object the filter sees (ties:
     // the smaller id). A shape cast is the shape cast or the motion cast, as the world picks.
     const kairos_query_settings world_settings{sizeof(kairos_query_settings), tolerance_, max_iterations_};
+    // A shape cast without settings takes the world's, as the rays always do.
+    const kairos_query_settings* cast_settings = settings.use ? &settings.settings : &world_settings;
     const int variants = kind == 0 ? 1 : 2;
     for (int variant = 0; variant < variants; ++variant) {
         int hit_any = 0;
@@ -728,11 +730,11 @@ void WorldFuzz::queries() {
                                     motion.end.position.y - motion.start.position.y,
                                     motion.end.position.z - motion.start.position.z};
                 st = kairos_shape_cast(cast_shape->shape.get(), &motion.start, t, o.shape, &o.pose.pose, {0, 0, 0},
-                                       settings.use ? &settings.settings : nullptr, &r);
+                                       cast_settings, &r);
             } else {
                 const kairos_motion still{o.pose.pose, o.pose.pose};
                 st = kairos_motion_cast(cast_shape->shape.get(), &motion, o.shape, &still,
-                                        settings.use ? &settings.settings : nullptr, &r);
+                                        cast_settings, &r);
             }
             if (st != KAIROS_OK) return;  // beyond range: no brute-force answer
             // The iteration guard's answer is a conservative hit at the last bound, however far
