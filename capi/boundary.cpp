@@ -101,6 +101,12 @@ BodyPose read_pose_checked(const kairos_pose* pose, const char* function, const 
     return {position, unit_quat(q, q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w)};
 }
 
+void check_pose_element_slow(const kairos_pose& pose, size_t i, const char* function, const char* name) {
+    char element[96];
+    std::snprintf(element, sizeof element, "%s[%zu]", name, i);
+    read_pose_checked(&pose, function, element);
+}
+
 QuerySettings read_query_settings_checked(const kairos_query_settings* s, const char* function, const char* name) {
     if (s == nullptr) return kDefaultQuerySettings;
     if (s->struct_size != sizeof(kairos_query_settings))

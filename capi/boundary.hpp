@@ -104,19 +104,31 @@ inline Quat unit_quat(const kairos_quat& q, double nn) {
     if (n == 1) return {q.x, q.y, q.z, q.w};
     return {q.x / n, q.y / n, q.z / n, q.w / n};
 }
-// NULL is the identity pose. Inline: the test below decides almost every call with a few
-// comparisons, accepting only poses the full checks accept (|n - 1| <= |n^2 - 1| for a length
-// n >= 0; NaN and infinities fail every comparison), so both paths give one result.
+// The test that decides almost every pose with a few comparisons, accepting only poses the full
+// checks accept (|n - 1| <= |n^2 - 1| for a length n >= 0; NaN and infinities fail every
+// comparison), so both paths give one result. nn: the quaternion's squared length.
+inline bool passes_pose_test(const kairos_pose& pose, double nn) {
+    const kairos_vec3& p = pose.position;
+    return std::fabs(p.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(p.y) <= KAIROS_MAX_MAGNITUDE &&
+           std::fabs(p.z) <= KAIROS_MAX_MAGNITUDE && std::fabs(nn - 1) <= KAIROS_QUAT_TOLERANCE;
+}
+inline double squared_length(const kairos_quat& q) { return q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w; }
+// NULL is the identity pose. Inline: passes_pose_test decides almost every call.
 inline BodyPose read_pose(const kairos_pose* pose, const char* function, const char* name) {
     if (pose != nullptr) {
-        const kairos_vec3& p = pose->position;
-        const kairos_quat& q = pose->orientation;
-        const double nn = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
-        if (std::fabs(p.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(p.y) <= KAIROS_MAX_MAGNITUDE &&
-            std::fabs(p.z) <= KAIROS_MAX_MAGNITUDE && std::fabs(nn - 1) <= KAIROS_QUAT_TOLERANCE)
-            return {{p.x, p.y, p.z}, unit_quat(q, nn)};
+        const double nn = squared_length(pose->orientation);
+        if (passes_pose_test(*pose, nn)) {
+            const kairos_vec3& p = pose->position;
+            return {{p.x, p.y, p.z}, unit_quat(pose->orientation, nn)};
+        }
     }
     return read_pose_checked(pose, function, name);
+}
+// Checks element i of an array of poses (NULL: identity poses); a failure names it "name[i]".
+void check_pose_element_slow(const kairos_pose& pose, size_t i, const char* function, const char* name);
+inline void check_pose_element(const kairos_pose* poses, size_t i, const char* function, const char* name) {
+    if (poses != nullptr && !passes_pose_test(poses[i], squared_length(poses[i].orientation)))
+        check_pose_element_slow(poses[i], i, function, name);
 }
 // The same checks, for the queries that need only the rigid transform. The quaternion is
 // normalised as read_pose does (four divisions, not a reciprocal: folding the normalisation into
@@ -126,10 +138,8 @@ inline BodyPose read_pose(const kairos_pose* pose, const char* function, const c
     if (pose == nullptr) return {};
     const kairos_vec3& p = pose->position;
     const kairos_quat& q = pose->orientation;
-    const double nn = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
-    if (!(std::fabs(p.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(p.y) <= KAIROS_MAX_MAGNITUDE &&
-          std::fabs(p.z) <= KAIROS_MAX_MAGNITUDE && std::fabs(nn - 1) <= KAIROS_QUAT_TOLERANCE))
-        read_pose_checked(pose, function, name);  // fails with the message, or accepts the pose
+    const double nn = squared_length(q);
+    if (!passes_pose_test(*pose, nn)) read_pose_checked(pose, function, name);  // fails with the message, or accepts it
     return {to_matrix(unit_quat(q, nn)), {p.x, p.y, p.z}};
 }
 

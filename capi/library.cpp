@@ -93,6 +93,10 @@ KAIROS_API int32_t kairos_get_api(uint32_t abi_version, const kairos_api** out) 
         kairos_world_ray_cast,
         kairos_world_shape_cast,
         kairos_world_query_box,
+        kairos_distance_batch,
+        kairos_shape_cast_batch,
+        kairos_motion_cast_batch,
+        kairos_world_move_batch,
     };
     // Version 1's callers know the 0.1 table and the 0.1 kairos_world_settings: their table ends
     // before shape_triangle and initialises the settings as 0.1 did (no write past its end).

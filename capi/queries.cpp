@@ -5,6 +5,7 @@
 #include "gjk/gjk.hpp"
 #include "gjk/penetration.hpp"
 #include "motion/motion_cast.hpp"
+#include "results.hpp"
 
 using namespace kairos;
 using namespace kairos::capi;
@@ -23,22 +24,12 @@ static_assert(int32_t(Termination::Hit) == KAIROS_TERMINATION_HIT);
 
 namespace {
 
-// A cast result in the C layout (written to the caller only after the query succeeded).
-kairos_cast_result to_c(const CastResult& r) {
-    kairos_cast_result c;
-    c.hit = r.hit ? 1 : 0;
-    c.toi = r.toi;
-    c.point = kairos::capi::to_c(r.point);
-    c.normal = kairos::capi::to_c(r.normal);
-    c.iterations = r.iterations;
-    c.termination = static_cast<int32_t>(r.termination);
-    return c;
-}
-
 // The C layout of a cast result whose numbers are all finite (the last guard, see boundary.hpp).
 kairos_cast_result checked(const CastResult& r, const char* fn) {
-    require_finite_result(std::isfinite(r.toi) && is_finite(r.point) && is_finite(r.normal), fn);
-    return to_c(r);
+    require_finite_result(is_finite_result(r), fn);
+    kairos_cast_result c;
+    write_c(r, c);
+    return c;
 }
 
 // kairos_distance and kairos_signed_distance: the same checks and the same result struct.
@@ -54,22 +45,8 @@ template <class Query>
         const QuerySettings qs = read_query_settings(settings, fn, "settings");
         require_pointer(out, fn, "out");
         const DistanceResult r = query(shape_of(a), pa, shape_of(b), pb, qs.tolerance, qs.max_iterations);
-        // One sum decides the common case: finite parts below 1e101 cannot add up to an overflow,
-        // so a non-finite sum means a non-finite part, or (never in range) an overflow that the
-        // full test then clears.
-        const double sum = r.distance + r.point_a.x + r.point_a.y + r.point_a.z + r.point_b.x + r.point_b.y +
-                           r.point_b.z + r.axis.x + r.axis.y + r.axis.z;
-        if (!std::isfinite(sum))
-            require_finite_result(
-                std::isfinite(r.distance) && is_finite(r.point_a) && is_finite(r.point_b) && is_finite(r.axis), fn);
-        // Every check has passed: nothing below can fail, so *out is written in place.
-        out->distance = r.distance;
-        out->point_a = kairos::capi::to_c(r.point_a);
-        out->point_b = kairos::capi::to_c(r.point_b);
-        out->axis = kairos::capi::to_c(r.axis);
-        out->intersecting = r.intersecting ? 1 : 0;
-        out->iterations = r.iterations;
-        out->termination = static_cast<int32_t>(r.termination);
+        require_finite_result(is_finite_result(r), fn);
+        write_c(r, *out);  // every check has passed: nothing below can fail, so *out is written in place
     });
 }
 }  // namespace

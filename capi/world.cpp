@@ -6,17 +6,10 @@
 #include <vector>
 
 #include "boundary.hpp"
-#include "world/world.hpp"
+#include "world_handle.hpp"
 
 using namespace kairos;
 using namespace kairos::capi;
-
-// The handle behind kairos_world: the core world plus what the C API hands out by pointer.
-struct kairos_world {
-    explicit kairos_world(const WorldSettings& settings) : core(settings) {}
-    World core;
-    std::vector<kairos_contact> contacts;  // the core's contacts in C layout, valid until the next step
-};
 
 namespace {
 
@@ -175,6 +168,31 @@ KAIROS_API int32_t kairos_world_move(kairos_world* w, kairos_object_id id, const
             fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "id %llu is static (kairos_world_set_static): it never moves",
                  static_cast<unsigned long long>(id));
         w->core.move(id, state_of(p));
+    });
+}
+
+KAIROS_API int32_t kairos_world_move_batch(kairos_world* w, const kairos_object_id* ids, const kairos_pose* ends,
+                                           size_t count) {
+    const char* const fn = __func__;
+    return guarded(fn, [&] {
+        require_pointer(w, fn, "w");
+        if (count == 0) return;
+        require_pointer(ids, fn, "ids");
+        require_pointer(ends, fn, "ends");
+        // Every move is checked before any is given, and room is made for them all: then none
+        // can fail, and a refused batch moves nothing.
+        for (size_t i = 0; i < count; ++i) {
+            const World::Object* o = w->core.find(ids[i]);
+            if (o == nullptr)
+                fail(KAIROS_ERROR_STALE_ID, fn, "ids[%zu] is %llu, %s", i, static_cast<unsigned long long>(ids[i]),
+                     ids[i] == 0 ? "which is never a valid id" : "not a live object of this world (unknown or removed)");
+            if (o->is_static)
+                fail(KAIROS_ERROR_INVALID_ARGUMENT, fn, "ids[%zu] is %llu, a static object (kairos_world_set_static): it never moves",
+                     i, static_cast<unsigned long long>(ids[i]));
+            check_pose_element(ends, i, fn, "ends");
+        }
+        w->core.reserve_moves(count);
+        for (size_t i = 0; i < count; ++i) w->core.move(ids[i], state_of(read_pose(&ends[i], fn, "ends")));
     });
 }
 

@@ -485,6 +485,45 @@ KAIROS_API int32_t kairos_world_query_box(const kairos_world* w, kairos_vec3 min
                                           size_t* count);
 
 /* ---------------------------------------------------------------------------------------------
+ * Batches (version 0.2): one pair query applied to `count` queries laid out as flat arrays (C
+ * arrays of the structs above, or numpy arrays of the same layout: no copy is needed). Query i
+ * reads element i of every array and writes out[i]; the results are bit for bit those of the
+ * single calls. a and b are arrays of count shape pointers (one shape against many poses: repeat
+ * the pointer); a NULL pose array means identity poses, a NULL translation array zero
+ * translations, NULL settings the defaults. count 0 succeeds and writes nothing (the arrays may
+ * then be NULL).
+ * One status for the batch: every query is checked before any is computed, the message of a
+ * failure names the first bad query ("poses_a[17].orientation must be ..."), and on failure
+ * nothing is written to out.
+ * workers: NULL runs the batch on the calling thread. A world runs it on that world's threads
+ * (kairos_world_settings.worker_count, the caller's included) or its task hook, in ranges of
+ * queries; the world is otherwise neither read nor changed, but as during kairos_world_step no
+ * other thread may use it until the batch returns. The arrays must not change meanwhile, and out
+ * must not overlap them.
+ */
+KAIROS_API int32_t kairos_distance_batch(const kairos_shape* const* a, const kairos_pose* poses_a,
+                                         const kairos_shape* const* b, const kairos_pose* poses_b, size_t count,
+                                         const kairos_query_settings* settings, kairos_world* workers,
+                                         kairos_distance_result* out);
+/* kairos_shape_cast over count queries: translations_a[i], translations_b[i] (world frame). */
+KAIROS_API int32_t kairos_shape_cast_batch(const kairos_shape* const* a, const kairos_pose* poses_a,
+                                           const kairos_vec3* translations_a, const kairos_shape* const* b,
+                                           const kairos_pose* poses_b, const kairos_vec3* translations_b,
+                                           size_t count, const kairos_query_settings* settings,
+                                           kairos_world* workers, kairos_cast_result* out);
+/* kairos_motion_cast over count queries (motions_a and motions_b: count motions each, not NULL). */
+KAIROS_API int32_t kairos_motion_cast_batch(const kairos_shape* const* a, const kairos_motion* motions_a,
+                                            const kairos_shape* const* b, const kairos_motion* motions_b,
+                                            size_t count, const kairos_query_settings* settings,
+                                            kairos_world* workers, kairos_cast_result* out);
+/* kairos_world_move for count objects: ids[i] moves to ends[i] over the next step (world frame).
+ * All or nothing: every id must be live and not static and every pose valid, or nothing moves
+ * and the message names the first bad index. An id given twice keeps its last end pose, as two
+ * calls of kairos_world_move would. */
+KAIROS_API int32_t kairos_world_move_batch(kairos_world* w, const kairos_object_id* ids, const kairos_pose* ends,
+                                           size_t count);
+
+/* ---------------------------------------------------------------------------------------------
  * Function table for dlopen users: dlsym only "kairos_get_api", then call through the table.
  * The table begins with struct_size and abi_version; function pointers are only ever appended,
  * so a caller may use every entry that lies within struct_size.
@@ -547,6 +586,16 @@ typedef struct kairos_api {
                                 const kairos_query_settings*, kairos_world_hit*);
     int32_t (*world_query_box)(const kairos_world*, kairos_vec3, kairos_vec3, const kairos_filter*, kairos_object_id*,
                                size_t, size_t*);
+    int32_t (*distance_batch)(const kairos_shape* const*, const kairos_pose*, const kairos_shape* const*,
+                              const kairos_pose*, size_t, const kairos_query_settings*, kairos_world*,
+                              kairos_distance_result*);
+    int32_t (*shape_cast_batch)(const kairos_shape* const*, const kairos_pose*, const kairos_vec3*,
+                                const kairos_shape* const*, const kairos_pose*, const kairos_vec3*, size_t,
+                                const kairos_query_settings*, kairos_world*, kairos_cast_result*);
+    int32_t (*motion_cast_batch)(const kairos_shape* const*, const kairos_motion*, const kairos_shape* const*,
+                                 const kairos_motion*, size_t, const kairos_query_settings*, kairos_world*,
+                                 kairos_cast_result*);
+    int32_t (*world_move_batch)(kairos_world*, const kairos_object_id*, const kairos_pose*, size_t);
 } kairos_api;
 
 /* The function table for abi_version (1 <= abi_version <= KAIROS_ABI_VERSION of the library).

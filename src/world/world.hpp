@@ -6,6 +6,7 @@
 // Thread safety: none; a world is used by one thread at a time.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -119,6 +120,9 @@ public:
     // The pose at the end of the next step (that step only). False for a stale id or a static
     // object (nothing changes).
     bool move(uint64_t id, const Pose& end);
+    // Room for `count` more moves: the next `count` calls of move() then cannot throw (a batch
+    // of moves is all or nothing). Throws std::bad_alloc with nothing changed.
+    void reserve_moves(std::size_t count) { moved_.reserve(moved_.size() + count); }
     // Static objects never move in a step (a pending move is cancelled); set_pose still places
     // them. False for a stale id.
     bool set_static(uint64_t id, bool is_static);
@@ -153,6 +157,9 @@ public:
     size_t live_count() const { return live_; }
     const std::vector<Object>& objects() const { return objects_; }
     const BroadPhase& broad_phase() const { return *broad_; }
+    // The threads of the step (settings' worker_count or task hook), lent to batches of pair
+    // queries. One job at a time: not while the world steps or another batch runs on it.
+    Workers& workers() { return *workers_; }
 
     // Of the last step, valid until the next step.
     const std::vector<Contact>& contacts() const { return contacts_; }

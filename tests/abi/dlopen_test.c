@@ -49,7 +49,8 @@ static void use_table(const kairos_api* api) {
     CHECK(api->shape_triangle != NULL);
     CHECK(api->signed_distance != NULL);
     CHECK(api->world_get_user_data != NULL);
-    CHECK(api->world_query_box != NULL);  /* the last entry of ABI version 2 */
+    CHECK(api->world_query_box != NULL);
+    CHECK(api->world_move_batch != NULL);  /* the last entry of ABI version 2 */
 
     half.x = 1.0;
     half.y = 2.0;

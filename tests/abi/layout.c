@@ -170,8 +170,12 @@ PIN_API(world_get_user_data, 41);
 PIN_API(world_ray_cast, 42);
 PIN_API(world_shape_cast, 43);
 PIN_API(world_query_box, 44);
-/* The size of ABI version 2's table: 45 entries. A new ABI version appends and grows this. */
-PIN_SIZE(kairos_api, 8 + 8 * 45);
+PIN_API(distance_batch, 45);
+PIN_API(shape_cast_batch, 46);
+PIN_API(motion_cast_batch, 47);
+PIN_API(world_move_batch, 48);
+/* The size of ABI version 2's table: 49 entries. A new ABI version appends and grows this. */
+PIN_SIZE(kairos_api, 8 + 8 * 49);
 PIN(KAIROS_ABI_VERSION == 2u);
 
 /* ---- Constants are ABI too: never renumbered -------------------------------------------------- */
@@ -225,6 +229,7 @@ static const kairos_api kairos_layout_table_types = {
     kairos_shape_triangle, kairos_signed_distance,
     kairos_world_set_filter, kairos_world_set_static, kairos_world_get_pose, kairos_world_get_user_data,
     kairos_world_ray_cast, kairos_world_shape_cast, kairos_world_query_box,
+    kairos_distance_batch, kairos_shape_cast_batch, kairos_motion_cast_batch, kairos_world_move_batch,
 };
 
 /* Referenced so that the table above is not an unused variable under -Wall. */

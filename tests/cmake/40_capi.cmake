@@ -7,3 +7,5 @@ kairos_gtest(test_capi_contract SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_ca
 # GJK at the rounding limit (issue 12): the reported cases in both orders and a sweep over every
 # pair of shape kinds at constructed gaps, every answer checked against its own certificate.
 kairos_gtest(test_capi_edges SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_edges.cpp LIBS kairos)
+# The batches against their single calls, on the calling thread, a world's threads and a task hook.
+kairos_gtest(test_capi_batch SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/capi/test_capi_batch.cpp LIBS kairos)
