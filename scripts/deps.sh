@@ -5,13 +5,14 @@
 
 # Everything a full build of the release preset needs: the compilers and CMake, GoogleTest,
 # Google Benchmark and the peers the benchmarks compare against (libccd, FCL, Bullet),
-# abigail-tools for the ABI check, python3 for the ctypes test, binutils (nm, readelf) for the
+# abigail-tools for the ABI check, python3 for the ctypes test, python3-numpy and python3-pytest
+# for the Python package (Debian's /usr/bin/python3), binutils (nm, readelf) for the
 # export check, gnuplot-nox for the benchmark plots, file for the packaging checks.
 KAIROS_DEBIAN_PACKAGES=(
     cmake g++ make pkg-config binutils file
     libgtest-dev libgmock-dev libbenchmark-dev
     libccd-dev libfcl-dev libbullet-dev
-    abigail-tools python3 gnuplot-nox
+    abigail-tools python3 python3-numpy python3-pytest gnuplot-nox
 )
 
 # Prints the packages of KAIROS_DEBIAN_PACKAGES that dpkg does not report as installed.

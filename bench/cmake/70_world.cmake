@@ -26,3 +26,9 @@ add_executable(bench_world_queries ${CMAKE_CURRENT_SOURCE_DIR}/bench_world_queri
 target_include_directories(bench_world_queries PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
 target_link_libraries(bench_world_queries PRIVATE kairos_core benchmark::benchmark)
 kairos_warnings(bench_world_queries)
+
+# The batches against single calls through the shared library (bench/python/bench_batch.py
+# measures the same scene from Python).
+add_executable(bench_batch ${CMAKE_CURRENT_SOURCE_DIR}/bench_batch.cpp)
+target_link_libraries(bench_batch PRIVATE kairos benchmark::benchmark)
+kairos_warnings(bench_batch)
