@@ -87,7 +87,7 @@ void SpacetimeSap::unlist(uint32_t id) {
     }
     const double lo = m.keyed.min.x;
     for_columns(id, [&](uint32_t c) {
-        auto& v = columns_[c].entries;
+        auto& v = list_of(columns_[c], m.in_statics);
         // Sorted by (lo, id): the entry is found by binary search on its key.
         auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(lo, id),
                                    [](const Entry& e, const std::pair<double, uint32_t>& k) {
@@ -101,6 +101,7 @@ void SpacetimeSap::place(uint32_t id, const Aabb& k) {
     Member& m = members_[id];
     m.keyed = k;
     m.listed = true;
+    m.in_statics = records_[id].is_static;
     m.y0 = cell(k.min.y);
     m.y1 = cell(k.max.y);
     m.z0 = cell(k.min.z);
@@ -126,9 +127,11 @@ void SpacetimeSap::list(uint32_t id, const Aabb& k) {
         return;
     }
     const Entry e = entry_[id];
+    const bool is_static = members_[id].in_statics;
     for_columns(id, [&](uint32_t c) {
-        auto& v = columns_[c].entries;
-        columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
+        auto& v = list_of(columns_[c], is_static);
+        double& longest = max_len_of(columns_[c], is_static);
+        longest = std::max(longest, e.hi - e.lo);
         v.insert(std::lower_bound(v.begin(), v.end(), e, entry_less), e);
     });
 }
@@ -149,6 +152,7 @@ void SpacetimeSap::rekey_all() {
         const Record& r = records_[id];
         const Aabb k = moving_flag_[id] ? union_box(r.box, r.box_end) : r.box;
         Member& m = members_[id];
+        if (m.in_statics) continue;  // never moved: only objects that are not static are re-keyed
         if (m.keyed.min == k.min && m.keyed.max == k.max) {
             // Same key (a move back to where the last step swept from, or a still object): the
             // entries stand, but a mover's columns must still be swept, and on_step groups the
@@ -259,22 +263,19 @@ void SpacetimeSap::sort_column(Column& c) {
 }
 
 // The candidates of one moving entry in a sorted column: entries whose lo lies in
-// [m.lo - max_len, m.hi] hold every entry whose x interval meets m's. A pair of two moving
-// entries is tested from the one with the smaller id.
-void SpacetimeSap::query_column(const Column& c, uint32_t id) {
+// [m.lo - max_len, m.hi] (a few ulps lower, for the rounding of hi - lo and of the subtraction)
+// hold every entry whose x interval meets m's. A pair of two moving entries is tested from the
+// one with the smaller id.
+void SpacetimeSap::query_column(const Column& c, uint32_t id, bool all_kinds) {
     const Entry& m = entry_[id];
-    // A few ulps lower, for the rounding of hi - lo and of the subtraction.
-    double from = m.lo - c.max_len;
-    from -= (std::fabs(from) + c.max_len) * 0x1p-50;
-    auto it =
-        std::lower_bound(c.entries.begin(), c.entries.end(), from, [](const Entry& e, double x) { return e.lo < x; });
-    for (; it != c.entries.end() && !(it->lo > m.hi); ++it) {
-        const Entry& e = *it;
-        if (e.id == id || e.hi < m.lo) continue;
-        if (e.span[0] > m.span[1] || m.span[0] > e.span[1] || e.span[2] > m.span[3] || m.span[2] > e.span[3]) continue;
-        if (moving_flag_[e.id] && e.id < id) continue;
+    auto near = [&](const Entry& e) {
+        if (e.id == id || e.hi < m.lo) return;
+        if (e.span[0] > m.span[1] || m.span[0] > e.span[1] || e.span[2] > m.span[3] || m.span[2] > e.span[3]) return;
+        if (moving_flag_[e.id] && e.id < id) return;
         candidates_.push_back({id, e.id});
-    }
+    };
+    if (all_kinds) for_near(c.entries, c.max_len, m.lo, m.hi, near);
+    for_near(c.statics, c.static_max_len, m.lo, m.hi, near);
 }
 
 // Objects not yet flushed are in no column, large objects in large_; the rest are found in the

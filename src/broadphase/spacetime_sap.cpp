@@ -21,11 +21,11 @@
 namespace kairos::broadphase_detail {
 
 template <class Wanted, class F>
-void SpacetimeSap::sweep_column(const Column& c, Wanted&& wanted, F&& f) {
+void SpacetimeSap::sweep_column(const std::vector<Entry>& entries, Wanted&& wanted, F&& f) {
     // The active list holds copies of the entries whose x interval is still open, compacted as
     // it is read; the tests are written without branches but for the rare pair that meets.
     std::size_t n = 0;  // active entries: active_[0, n); the vector only grows
-    for (const Entry& e : c.entries) {
+    for (const Entry& e : entries) {
         std::size_t w = 0;
         for (std::size_t i = 0; i < n; ++i) {
             const Active a = active_[i];
@@ -91,9 +91,11 @@ void SpacetimeSap::on_flush() {
             continue;
         }
         const Entry e = entry_[id];
+        const bool is_static = members_[id].in_statics;
         for_columns(id, [&](uint32_t c) {
-            columns_[c].entries.push_back(e);
-            columns_[c].max_len = std::max(columns_[c].max_len, e.hi - e.lo);
+            list_of(columns_[c], is_static).push_back(e);
+            double& longest = max_len_of(columns_[c], is_static);
+            longest = std::max(longest, e.hi - e.lo);
             queue(c);
         });
     }
@@ -101,10 +103,19 @@ void SpacetimeSap::on_flush() {
         if (boxes_overlap(records_[a].box, records_[b].box)) overlaps_.insert(pair_key(a, b));
     };
     for (uint32_t c : queued_) {
-        auto& v = columns_[c].entries;
-        std::sort(v.begin(), v.end(), entry_less);
+        Column& col = columns_[c];
+        std::sort(col.entries.begin(), col.entries.end(), entry_less);
+        std::sort(col.statics.begin(), col.statics.end(), entry_less);
+        // Both kinds in one sweep (additions are rare: the merge is not worth avoiding).
+        const std::vector<Entry>* all = &col.entries;
+        if (!col.statics.empty()) {
+            merged_.clear();
+            std::merge(col.entries.begin(), col.entries.end(), col.statics.begin(), col.statics.end(),
+                       std::back_inserter(merged_), entry_less);
+            all = &merged_;
+        }
         sweep_column(
-            columns_[c], [&](uint32_t a, uint32_t b) { return (is_new(a) || is_new(b)) && !both_static(a, b); }, found);
+            *all, [&](uint32_t a, uint32_t b) { return (is_new(a) || is_new(b)) && !both_static(a, b); }, found);
     }
     queued_.clear();
     // Large new objects against everything present; large old ones against the new.
@@ -219,13 +230,15 @@ void SpacetimeSap::on_step() {
     for (uint32_t c : queued_) {
         Column& col = columns_[c];
         if (col.movers == 0) continue;
-        if (8 * std::size_t{col.movers} >= col.entries.size()) {
+        // Moving entries against the others that are not static: one sweep when many move, else a
+        // search each; against the static ones always a search each.
+        const bool sweep = 8 * std::size_t{col.movers} >= col.entries.size();
+        if (sweep) {
             col.max_len = 0;
             for (const Entry& e : col.entries) col.max_len = std::max(col.max_len, e.hi - e.lo);
-            sweep_column(col, wanted, collect);
-        } else {
-            for (uint32_t k = 0; k < col.movers; ++k) query_column(col, column_movers_[col.first_mover + k]);
+            sweep_column(col.entries, wanted, collect);
         }
+        for (uint32_t k = 0; k < col.movers; ++k) query_column(col, column_movers_[col.first_mover + k], !sweep);
     }
     queued_.clear();
     // The exact tests, with the records of a later candidate loaded ahead (they are scattered).
@@ -256,11 +269,10 @@ std::string SpacetimeSap::check_invariants() const {
     collect_present(present);
     std::size_t entries = 0;
     for (const Column& c : columns_) {
-        entries += c.entries.size();
-        for (std::size_t i = 1; i < c.entries.size(); ++i) {
-            const Entry& p = c.entries[i - 1];
-            const Entry& q = c.entries[i];
-            if (!entry_less(p, q)) return "a column is not sorted";
+        for (const std::vector<Entry>* v : {&c.entries, &c.statics}) {
+            entries += v->size();
+            for (std::size_t i = 1; i < v->size(); ++i)
+                if (!entry_less((*v)[i - 1], (*v)[i])) return "a column is not sorted";
         }
     }
     std::size_t expected_entries = 0;
@@ -277,6 +289,10 @@ std::string SpacetimeSap::check_invariants() const {
                 return why.str();
             }
         }
+        if (m.in_statics != records_[id].is_static) {
+            why << "object " << id << " is listed as " << (m.in_statics ? "" : "not ") << "static";
+            return why.str();
+        }
         if (m.large) {
             if (!std::binary_search(large_.begin(), large_.end(), id)) return "large object missing from the list";
             continue;
@@ -291,7 +307,8 @@ std::string SpacetimeSap::check_invariants() const {
             for (int32_t cz = m.z0; cz <= m.z1; ++cz) {
                 ++expected_entries;
                 const Column* c = find_column(cy, cz);
-                const bool ok = c != nullptr && std::any_of(c->entries.begin(), c->entries.end(), [&](const Entry& e) {
+                const std::vector<Entry>* v = c == nullptr ? nullptr : m.in_statics ? &c->statics : &c->entries;
+                const bool ok = v != nullptr && std::any_of(v->begin(), v->end(), [&](const Entry& e) {
                                     return e.id == id && e.lo == want.lo && e.hi == want.hi &&
                                            std::equal(std::begin(e.span), std::end(e.span), std::begin(want.span));
                                 });

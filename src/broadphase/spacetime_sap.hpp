@@ -30,6 +30,9 @@ namespace kairos::broadphase_detail {
 // at some moment overlaps at some point of space, whose column holds both objects, and their swept
 // x intervals overlap there: no pair is missed. Columns with no moving object are not visited;
 // pairs of objects that do not move keep their state in the overlap set, reported at t = 0.
+// Static objects' entries are kept apart in each column (`statics`): a step never re-keys,
+// compacts, merges or sweeps them; each moving entry finds the static ones near it by binary
+// search, so a column of many static objects costs its movers a search each, not a pass.
 // Objects whose swept box spans more than kMaxColumns columns are kept in a list of their own and
 // tested against every candidate directly.
 class SpacetimeSap final : public BroadPhase {
@@ -57,9 +60,11 @@ private:
     };
     static constexpr EntryLess entry_less{};
     struct Column {
-        std::vector<Entry> entries;
+        std::vector<Entry> entries;  // objects that are not static
+        std::vector<Entry> statics;  // static objects, sorted the same way
         uint32_t visited = 0;  // the pass that last queued it for a sweep
         double max_len = 0;    // at least the longest entry's hi - lo (local queries start there)
+        double static_max_len = 0;  // the same for statics
         uint32_t movers = 0;   // this step: its moving entries, at column_movers_[first_mover...]
         uint32_t first_mover = 0;
     };
@@ -70,6 +75,7 @@ private:
         int32_t y0 = 0, y1 = -1, z0 = 0, z1 = -1;
         bool large = false;
         bool listed = false;  // in columns or in large_
+        bool in_statics = false;  // its entries are in the columns' statics (static when listed)
         uint8_t cached = 0;   // columns in `cols` (0: more than fit, found by key)
         uint32_t cols[4] = {};
     };
@@ -88,12 +94,20 @@ private:
     // starting within the column's longest entry before q, a few ulps lower for rounding).
     template <class F>
     static void for_entries_near(const Column& c, const Aabb& q, F&& f) {
-        double from = q.min.x - c.max_len;
-        from -= (std::fabs(from) + c.max_len) * 0x1p-50;
-        auto it = std::lower_bound(c.entries.begin(), c.entries.end(), from,
-                                   [](const Entry& e, double x) { return e.lo < x; });
-        for (; it != c.entries.end() && !(it->lo > q.max.x); ++it) f(*it);
+        for_near(c.entries, c.max_len, q.min.x, q.max.x, f);
+        for_near(c.statics, c.static_max_len, q.min.x, q.max.x, f);
     }
+    // The same in one sorted list of entries, for the x interval [lo, hi].
+    template <class F>
+    static void for_near(const std::vector<Entry>& v, double max_len, double lo, double hi, F&& f) {
+        double from = lo - max_len;
+        from -= (std::fabs(from) + max_len) * 0x1p-50;
+        auto it = std::lower_bound(v.begin(), v.end(), from, [](const Entry& e, double x) { return e.lo < x; });
+        for (; it != v.end() && !(it->lo > hi); ++it) f(*it);
+    }
+    // The entries of one kind (static or not) of a column, and the bound of their lengths.
+    static std::vector<Entry>& list_of(Column& c, bool is_static) { return is_static ? c.statics : c.entries; }
+    static double& max_len_of(Column& c, bool is_static) { return is_static ? c.static_max_len : c.max_len; }
     // Sets the member's columns from its keyed box (creating columns as needed).
     void place(uint32_t id, const Aabb& k);
 
@@ -135,8 +149,10 @@ private:
     // Sweep and prune along x over one column: calls f(a, b) for each pair whose x intervals
     // and spans overlap and `wanted(a, b)` holds.
     template <class Wanted, class F>
-    void sweep_column(const Column& c, Wanted&& wanted, F&& f);
-    void query_column(const Column& c, uint32_t id);  // appends to candidates_
+    void sweep_column(const std::vector<Entry>& entries, Wanted&& wanted, F&& f);
+    // Appends to candidates_ the pairs of a moving entry with the entries near it: those that are
+    // not static (all_kinds) and the static ones.
+    void query_column(const Column& c, uint32_t id, bool all_kinds);
     bool both_static(uint32_t a, uint32_t b) const { return records_[a].is_static && records_[b].is_static; }
 
     double cell_size_ = 0;  // chosen at the first insertion
