@@ -27,6 +27,10 @@ namespace {
 
 struct Judge {
     int cases = 0, overlapping = 0, failures = 0;
+    // When set, results that stopped on rounding (NO_PROGRESS) or the guard, whose depth the
+    // header calls a bound, are counted in `unconverged` and not held to the depth's invariants.
+    bool converged_only = false;
+    int unconverged = 0;
     std::vector<double> errors;  // depth error over the size
     void fail(const std::string& what) {
         if (++failures <= 10) ADD_FAILURE() << what;
@@ -76,6 +80,11 @@ void check(const Shape& a, const Transform& xa, const Shape& b, const Transform&
         }
         if (r.distance >= 0) continue;
         ++j.overlapping;
+        if (j.converged_only &&
+            (r.termination == Termination::NoProgress || r.termination == Termination::MaxIterations)) {
+            ++j.unconverged;
+            continue;
+        }
         // The deepest points are depth apart along the axis.
         const Vec3 gap = r.point_b - r.point_a - r.distance * r.axis;
         if (!(length(gap) <= rel * size))
@@ -91,7 +100,8 @@ void check(const Shape& a, const Transform& xa, const Shape& b, const Transform&
         if (!(std::fabs(dot(r.axis, sa - r.point_a)) <= rel * size))
             j.fail(describe("point_a not on A's support plane", dot(r.axis, sa - r.point_a) / size, at));
         if (!(std::fabs(dot(r.axis, sb - r.point_b)) <= rel * size))
-            j.fail(describe("point_b not on B's support plane", dot(r.axis, sb - r.point_b) / size, at));
+            j.fail(describe("point_b not on B's support plane", dot(r.axis, sb - r.point_b) / size, at) +
+                   " termination " + std::to_string(int(r.termination)));
         // B moved by depth along the axis touches A; moved 1e-6 of the size further, it is apart
         // by that much (the minimum translation separates).
         const double depth = -r.distance;
@@ -408,4 +418,47 @@ TEST(Penetration, ABallCentredInsideASlab) {
                 j.cases, j.median(), j.worst());
     EXPECT_EQ(j.failures, 0);
     EXPECT_EQ(j.overlapping, j.cases);
+}
+
+// Flat cones (1e3 .. 1e4 times wider than thick) against capsules sunk into their slanted top:
+// the expansion's nearest face may end with the origin's nearest point on an edge, whose
+// direction the stopping rules never tested (one argument order reported a depth 1.2 % short
+// along its axis: found by fuzz_queries, tests/fuzz/findings). Every result against the
+// invariants of `check`, both orders agreeing.
+TEST(Penetration, CapsulesSunkIntoFlatCones) {
+    Judge j;
+    j.converged_only = true;
+    {
+        CapsuleShape capsule(1, 0.15623712520027466);
+        ConeShape cone(4141.1764705882351, 0.45294117647058824);
+        const Transform xa = pose({-3.5136644541084916, -0.71760128175783944, -1.31783016708629}, Quat{0, 0, 0, 1});
+        const Transform xb = pose({-4, -4, -3.4999923704890517},
+                                  normalized(Quat{0.40857222955703837, 0.40854849812326516, 0.40854849812326516,
+                                                  0.70657270156526686}));
+        check(capsule, xa, cone, xb, NAN, 4141.0, 1e-9, "fuzz finding", j);
+        const double ab = signed_distance(capsule, xa, cone, xb, 1e-10, 256).distance;
+        const double ba = signed_distance(cone, xb, capsule, xa, 1e-10, 256).distance;
+        EXPECT_NEAR(ab, ba, 1e-9) << "the fuzz finding's two orders";
+    }
+    const uint64_t seed = 1127;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; i < 300; ++i) {
+        const double radius = std::pow(10.0, 3 + u(rng)), half = 0.1 + 0.9 * u(rng);
+        ConeShape cone(radius, half);
+        CapsuleShape capsule(0.2 + u(rng), 0.5 * u(rng));
+        const Transform xb = pose({10 * u(rng), 10 * u(rng), 10 * u(rng)}, random_quat(rng));
+        // The capsule's centre within 20 of the apex's axis, just under the slanted top.
+        const double rho = 20 * u(rng), phi = 6.283185307179586 * u(rng);
+        const double top = half - 2 * half * rho / radius;  // the lateral surface's height at rho
+        const Vec3 local{rho * std::cos(phi), rho * std::sin(phi), top - 0.5 * u(rng)};
+        const Transform xa = pose(xb.apply(local), random_quat(rng));
+        check(capsule, xa, cone, xb, NAN, radius, 1e-9,
+              "flat cone seed " + std::to_string(seed) + " case " + std::to_string(i), j);
+    }
+    std::printf("capsules in flat cones: %d signed distances, %d overlapping, %d stopped on rounding\n", j.cases,
+                j.overlapping, j.unconverged);
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_GT(j.overlapping, j.cases * 9 / 10);
+    EXPECT_LT(j.unconverged, j.cases / 4);  // at the tolerance 1e-12 of check(), beyond curved shapes' rounding
 }
