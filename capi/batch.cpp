@@ -100,17 +100,20 @@ KAIROS_API int32_t kairos_distance_batch(const kairos_shape* const* a, const kai
                                          kairos_distance_result* out) {
     const char* const fn = __func__;
     return guarded(fn, [&] {
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        if (count == 0) return;
-        require_pointer(a, fn, "a");
-        require_pointer(b, fn, "b");
-        require_pointer(out, fn, "out");
+        // In the single call's order: the queries, the settings, then out.
+        if (count > 0) {
+            require_pointer(a, fn, "a");
+            require_pointer(b, fn, "b");
+        }
         for (size_t i = 0; i < count; ++i) {
             check_shape_element(a, i, fn, "a");
             check_pose_element(poses_a, i, fn, "poses_a");
             check_shape_element(b, i, fn, "b");
             check_pose_element(poses_b, i, fn, "poses_b");
         }
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
+        if (count == 0) return;
+        require_pointer(out, fn, "out");
         run_batch(count, workers, out, fn, [&](size_t i, kairos_distance_result& r) {
             const DistanceResult d = gjk_distance(shape_of(a[i]), transform_at(poses_a, i, fn), shape_of(b[i]),
                                                   transform_at(poses_b, i, fn), qs.tolerance, qs.max_iterations);
@@ -128,11 +131,10 @@ KAIROS_API int32_t kairos_shape_cast_batch(const kairos_shape* const* a, const k
                                            kairos_world* workers, kairos_cast_result* out) {
     const char* const fn = __func__;
     return guarded(fn, [&] {
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        if (count == 0) return;
-        require_pointer(a, fn, "a");
-        require_pointer(b, fn, "b");
-        require_pointer(out, fn, "out");
+        if (count > 0) {
+            require_pointer(a, fn, "a");
+            require_pointer(b, fn, "b");
+        }
         for (size_t i = 0; i < count; ++i) {
             check_shape_element(a, i, fn, "a");
             check_pose_element(poses_a, i, fn, "poses_a");
@@ -141,6 +143,9 @@ KAIROS_API int32_t kairos_shape_cast_batch(const kairos_shape* const* a, const k
             check_pose_element(poses_b, i, fn, "poses_b");
             check_point_element(translations_b, i, fn, "translations_b");
         }
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
+        if (count == 0) return;
+        require_pointer(out, fn, "out");
         run_batch(count, workers, out, fn, [&](size_t i, kairos_cast_result& r) {
             const CastResult c = kairos::shape_cast(shape_of(a[i]), transform_at(poses_a, i, fn),
                                                     point_at(translations_a, i), shape_of(b[i]),
@@ -159,13 +164,12 @@ KAIROS_API int32_t kairos_motion_cast_batch(const kairos_shape* const* a, const 
                                             kairos_world* workers, kairos_cast_result* out) {
     const char* const fn = __func__;
     return guarded(fn, [&] {
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        if (count == 0) return;
-        require_pointer(a, fn, "a");
-        require_pointer(motions_a, fn, "motions_a");
-        require_pointer(b, fn, "b");
-        require_pointer(motions_b, fn, "motions_b");
-        require_pointer(out, fn, "out");
+        if (count > 0) {
+            require_pointer(a, fn, "a");
+            require_pointer(motions_a, fn, "motions_a");
+            require_pointer(b, fn, "b");
+            require_pointer(motions_b, fn, "motions_b");
+        }
         for (size_t i = 0; i < count; ++i) {
             check_shape_element(a, i, fn, "a");
             // The motions' poses as elements of arrays of (start, end) pairs: "motions_a[3].end".
@@ -180,6 +184,9 @@ KAIROS_API int32_t kairos_motion_cast_batch(const kairos_shape* const* a, const 
             }
             check_shape_element(b, i, fn, "b");
         }
+        const QuerySettings qs = read_query_settings(settings, fn, "settings");
+        if (count == 0) return;
+        require_pointer(out, fn, "out");
         run_batch(count, workers, out, fn, [&](size_t i, kairos_cast_result& r) {
             const Motion ma(pose_of(motions_a[i].start, fn), pose_of(motions_a[i].end, fn));
             const Motion mb(pose_of(motions_b[i].start, fn), pose_of(motions_b[i].end, fn));

@@ -243,7 +243,55 @@ DistanceCall call_distance(const Posed& a, const Posed& b, const SettingsCase& s
     expect_settings(s, v);
     v.check(c.status, "kairos_distance");
     if (c.status != KAIROS_OK && !poisoned(c.result)) violation("kairos_distance failed but wrote *out");
+    check_distance_batch(a, b, s, c.status, c.result);
     return c;
+}
+
+// ---- Batches: the same query twice in one batch gives the single call's answer ----------------
+
+// Field by field (the structs have padding, which neither call defines).
+bool same_bits(const double& x, const double& y) { return std::memcmp(&x, &y, sizeof x) == 0; }
+bool same_bits(const kairos_vec3& x, const kairos_vec3& y) {
+    return same_bits(x.x, y.x) && same_bits(x.y, y.y) && same_bits(x.z, y.z);
+}
+bool same_result(const kairos_distance_result& x, const kairos_distance_result& y) {
+    return same_bits(x.distance, y.distance) && same_bits(x.point_a, y.point_a) && same_bits(x.point_b, y.point_b) &&
+           same_bits(x.axis, y.axis) && x.intersecting == y.intersecting && x.iterations == y.iterations &&
+           x.termination == y.termination;
+}
+bool same_result(const kairos_cast_result& x, const kairos_cast_result& y) {
+    return x.hit == y.hit && same_bits(x.toi, y.toi) && same_bits(x.point, y.point) && same_bits(x.normal, y.normal) &&
+           x.iterations == y.iterations && x.termination == y.termination;
+}
+
+// A batch of the single query twice: it succeeds exactly when the single call did, then with the
+// single call's result in both places; refused, it writes nothing. `call(out)` runs the batch.
+template <class Result, class Call>
+void check_batch_of_two(const char* function, int32_t single_status, const Result& single, Call&& call) {
+    Result out[2];
+    poison(out[0]);
+    poison(out[1]);
+    const int32_t status = observe(function, [&] { return call(out); });
+    if ((status == KAIROS_OK) != (single_status == KAIROS_OK))
+        violation("%s returned %s where the single call returned %s (%s)", function, kairos_status_name(status),
+                  kairos_status_name(single_status), kairos_last_error());
+    if (status != KAIROS_OK) {
+        if (!poisoned(out[0]) || !poisoned(out[1])) violation("%s failed but wrote out", function);
+        return;
+    }
+    for (const Result& r : out)
+        if (!same_result(r, single)) violation("%s: a result differs from the single call's", function);
+}
+
+void check_distance_batch(const Posed& a, const Posed& b, const SettingsCase& s, int32_t status,
+                          const kairos_distance_result& single) {
+    const kairos_shape* sa[2] = {a.shape->shape.get(), a.shape->shape.get()};
+    const kairos_shape* sb[2] = {b.shape->shape.get(), b.shape->shape.get()};
+    const kairos_pose pa[2] = {a.pose.pose, a.pose.pose}, pb[2] = {b.pose.pose, b.pose.pose};
+    check_batch_of_two("kairos_distance_batch", status, single, [&](kairos_distance_result* out) {
+        return kairos_distance_batch(sa, a.null_pose ? nullptr : pa, sb, b.null_pose ? nullptr : pb, 2,
+                                     s.use ? &s.settings : nullptr, nullptr, out);
+    });
 }
 
 // Checks a successful distance result; false when it holds tolerated non-finite numbers.
@@ -630,6 +678,16 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
         return kairos_shape_cast(a.shape->shape.get(), a.pose_arg(), ta, b.shape->shape.get(), b.pose_arg(), tb,
                                  settings.use ? &settings.settings : nullptr, &r);
     });
+    {
+        const kairos_shape* sa[2] = {a.shape->shape.get(), a.shape->shape.get()};
+        const kairos_shape* sb[2] = {b.shape->shape.get(), b.shape->shape.get()};
+        const kairos_pose pa[2] = {a.pose.pose, a.pose.pose}, pb[2] = {b.pose.pose, b.pose.pose};
+        const kairos_vec3 tra[2] = {ta, ta}, trb[2] = {tb, tb};
+        check_batch_of_two("kairos_shape_cast_batch", status, r, [&](kairos_cast_result* out) {
+            return kairos_shape_cast_batch(sa, a.null_pose ? nullptr : pa, tra, sb, b.null_pose ? nullptr : pb, trb, 2,
+                                           settings.use ? &settings.settings : nullptr, nullptr, out);
+        });
+    }
     Verdict v;
     expect_pair(a, b, v);
     expect_settings(settings, v);
@@ -721,6 +779,15 @@ void query_motion_cast(Input& in, const Posed& a, const Posed& b) {
         return kairos_motion_cast(a.shape->shape.get(), &ma, b.shape->shape.get(), null_motion ? nullptr : &mb,
                                   settings.use ? &settings.settings : nullptr, &r);
     });
+    if (!null_motion) {
+        const kairos_shape* sa[2] = {a.shape->shape.get(), a.shape->shape.get()};
+        const kairos_shape* sb[2] = {b.shape->shape.get(), b.shape->shape.get()};
+        const kairos_motion mas[2] = {ma, ma}, mbs[2] = {mb, mb};
+        check_batch_of_two("kairos_motion_cast_batch", status, r, [&](kairos_cast_result* out) {
+            return kairos_motion_cast_batch(sa, mas, sb, mbs, 2, settings.use ? &settings.settings : nullptr, nullptr,
+                                            out);
+        });
+    }
     Verdict v;
     expect_pair(a, b, v);
     expect_pose(a1, v);
