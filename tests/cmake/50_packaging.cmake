@@ -58,6 +58,17 @@ if(NOT KAIROS_SANITIZED)
     set_tests_properties(abi_python_ctypes PROPERTIES LABELS abi SKIP_RETURN_CODE 77)
 endif()
 
+# ---- The Python package's pytest suite (python/tests) on the interpreter cmake/python.cmake chose ----
+# Skipped (77) when that interpreter lacks numpy or pytest, except in CI (CI set), where a suite
+# that cannot run is a failure.
+if(NOT KAIROS_SANITIZED AND KAIROS_PYTHON3)
+    add_test(NAME python_package
+        COMMAND sh -c "\"$1\" -c 'import numpy, pytest' 2>/dev/null || { echo \"numpy or pytest missing for $1\"; [ -n \"$CI\" ] && exit 1; exit 77; }; exec \"$1\" -m pytest -q -p no:cacheprovider \"$2\""
+                sh ${KAIROS_PYTHON3} ${PROJECT_SOURCE_DIR}/python/tests)
+    set_tests_properties(python_package PROPERTIES LABELS python SKIP_RETURN_CODE 77 TIMEOUT 600
+        ENVIRONMENT "KAIROS_LIBRARY=$<TARGET_FILE:kairos>;PYTHONPATH=${PROJECT_SOURCE_DIR}/python;PYTHONDONTWRITEBYTECODE=1")
+endif()
+
 # ---- Exports: only kairos_ functions, SONAME libkairos.so.0, node KAIROS_0 ----------------------
 add_test(NAME abi_exports
     COMMAND bash ${KAIROS_ABI_TESTS}/check_exports.sh $<TARGET_FILE:kairos> ${PROJECT_SOURCE_DIR}/include/kairos/kairos.h)
@@ -69,11 +80,16 @@ set_tests_properties(abi_exports PROPERTIES LABELS abi
 set(KAIROS_CONSUMER_DIR ${CMAKE_BINARY_DIR}/consumer-test)
 set(KAIROS_CONSUMER_ENV
     "CMAKE=${CMAKE_COMMAND}" "CC=${CMAKE_C_COMPILER}" "CFLAGS=${CMAKE_C_FLAGS}"
-    "LDFLAGS=${CMAKE_EXE_LINKER_FLAGS}" "KAIROS_EXPECTED_VERSION=${PROJECT_VERSION}")
-foreach(step IN ITEMS install cmake pkgconfig major)
+    "LDFLAGS=${CMAKE_EXE_LINKER_FLAGS}" "KAIROS_EXPECTED_VERSION=${PROJECT_VERSION}" "PYTHON3=${KAIROS_PYTHON3}")
+set(KAIROS_CONSUMER_STEPS install cmake pkgconfig major)
+if(NOT KAIROS_SANITIZED AND KAIROS_PYTHON3)
+    list(APPEND KAIROS_CONSUMER_STEPS python)
+endif()
+foreach(step IN LISTS KAIROS_CONSUMER_STEPS)
     add_test(NAME consumer_${step}
         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run_consumer.sh ${step} ${CMAKE_BINARY_DIR} ${KAIROS_CONSUMER_DIR})
-    set_tests_properties(consumer_${step} PROPERTIES LABELS consumer ENVIRONMENT "${KAIROS_CONSUMER_ENV}")
+    set_tests_properties(consumer_${step} PROPERTIES LABELS consumer ENVIRONMENT "${KAIROS_CONSUMER_ENV}"
+        SKIP_RETURN_CODE 77)
     if(step STREQUAL "install")
         set_tests_properties(consumer_${step} PROPERTIES FIXTURES_SETUP kairos_installed)
     else()
@@ -81,8 +97,8 @@ foreach(step IN ITEMS install cmake pkgconfig major)
     endif()
 endforeach()
 # The consumers write into one directory: run them one after another.
-set_tests_properties(consumer_install consumer_cmake consumer_pkgconfig consumer_major
-    PROPERTIES RESOURCE_LOCK kairos_consumer_dir)
+list(TRANSFORM KAIROS_CONSUMER_STEPS PREPEND consumer_ OUTPUT_VARIABLE KAIROS_CONSUMER_TESTS)
+set_tests_properties(${KAIROS_CONSUMER_TESTS} PROPERTIES RESOURCE_LOCK kairos_consumer_dir)
 
 # ---- Embedded with add_subdirectory, with the test and benchmark packages hidden ---------------
 # Configures and builds tests/embed (the library alone, from this source tree) in a scratch

@@ -7,9 +7,12 @@
 #   cmake      configure, build and run tests/consumer with find_package(kairos 0 REQUIRED)
 #   pkgconfig  cc main.c $(pkg-config --cflags --libs kairos), run it with LD_LIBRARY_PATH
 #   major      find_package(kairos 1 REQUIRED) must fail: the package is same-major compatible
+#   python     the installed Python package imports and finds the installed library by itself
+#              (PYTHONPATH set to its directory, KAIROS_LIBRARY unset, no build tree reachable)
 #   all        every step above, in order
 # Environment: CMAKE (default cmake), CC (default cc), CFLAGS and LDFLAGS (e.g. the sanitizer
-# flags of the build under test), KAIROS_EXPECTED_VERSION (e.g. 0.1.0; checked when set).
+# flags of the build under test), KAIROS_EXPECTED_VERSION (e.g. 0.1.0; checked when set), PYTHON3
+# (the interpreter of the python step; exit 77, skipped, when it lacks numpy).
 set -euo pipefail
 
 step=${1:?step: install, cmake, pkgconfig, major or all}
@@ -103,12 +106,32 @@ do_major() {
     echo "find_package(kairos 1 REQUIRED) fails as it should"
 }
 
+do_python() {
+    local python=${PYTHON3:-python3} init pkgdir
+    "$python" -c "import numpy" 2>/dev/null || { echo "numpy missing for $python: skipped"; exit 77; }
+    init=$(find "$prefix" -path '*/kairos/__init__.py' -print -quit)
+    [ -n "$init" ] || fail "the Python package was not installed under $prefix"
+    pkgdir=$(dirname "$(dirname "$init")")
+    [ -f "$pkgdir/kairos/_location.py" ] || fail "kairos/_location.py was not installed"
+    # From a directory outside the source and build trees, so only the install can be found.
+    local loaded
+    loaded=$(cd "$work_dir" && env -u KAIROS_LIBRARY PYTHONPATH="$pkgdir" PYTHONDONTWRITEBYTECODE=1 "$python" -c \
+        "import kairos; b = kairos.Box((1, 2, 3)); print(kairos.library_path())") ||
+        fail "python3 -c 'import kairos' failed on the installed package"
+    echo "the installed package loaded $loaded"
+    case "$(readlink -f "$loaded")" in
+        "$(readlink -f "$prefix")"/*) ;;
+        *) fail "the installed package loaded $loaded, not the library installed in $prefix" ;;
+    esac
+}
+
 case "$step" in
     install) do_install ;;
     cmake) do_cmake ;;
     pkgconfig) do_pkgconfig ;;
     major) do_major ;;
-    all) do_install; do_cmake; do_pkgconfig; do_major ;;
-    *) fail "unknown step (install, cmake, pkgconfig, major or all)" ;;
+    python) do_python ;;
+    all) do_install; do_cmake; do_pkgconfig; do_major; do_python ;;
+    *) fail "unknown step (install, cmake, pkgconfig, major, python or all)" ;;
 esac
 echo "run_consumer.sh $step: OK"
