@@ -231,22 +231,6 @@ struct DistanceCall {
     kairos_distance_result result;
 };
 
-DistanceCall call_distance(const Posed& a, const Posed& b, const SettingsCase& s) {
-    DistanceCall c;
-    poison(c.result);
-    c.status = observe("kairos_distance", [&] {
-        return kairos_distance(a.shape->shape.get(), a.pose_arg(), b.shape->shape.get(), b.pose_arg(),
-                               s.use ? &s.settings : nullptr, &c.result);
-    });
-    Verdict v;
-    expect_pair(a, b, v);
-    expect_settings(s, v);
-    v.check(c.status, "kairos_distance");
-    if (c.status != KAIROS_OK && !poisoned(c.result)) violation("kairos_distance failed but wrote *out");
-    check_distance_batch(a, b, s, c.status, c.result);
-    return c;
-}
-
 // ---- Batches: the same query twice in one batch gives the single call's answer ----------------
 
 // Field by field (the structs have padding, which neither call defines).
@@ -292,6 +276,22 @@ void check_distance_batch(const Posed& a, const Posed& b, const SettingsCase& s,
         return kairos_distance_batch(sa, a.null_pose ? nullptr : pa, sb, b.null_pose ? nullptr : pb, 2,
                                      s.use ? &s.settings : nullptr, nullptr, out);
     });
+}
+
+DistanceCall call_distance(const Posed& a, const Posed& b, const SettingsCase& s) {
+    DistanceCall c;
+    poison(c.result);
+    c.status = observe("kairos_distance", [&] {
+        return kairos_distance(a.shape->shape.get(), a.pose_arg(), b.shape->shape.get(), b.pose_arg(),
+                               s.use ? &s.settings : nullptr, &c.result);
+    });
+    Verdict v;
+    expect_pair(a, b, v);
+    expect_settings(s, v);
+    v.check(c.status, "kairos_distance");
+    if (c.status != KAIROS_OK && !poisoned(c.result)) violation("kairos_distance failed but wrote *out");
+    check_distance_batch(a, b, s, c.status, c.result);
+    return c;
 }
 
 // Checks a successful distance result; false when it holds tolerated non-finite numbers.
