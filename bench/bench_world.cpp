@@ -395,6 +395,7 @@ void run_static_floor(benchmark::State& state) {
     }
     cube->release();  // the world holds its references
     uint64_t contacts = 0, steps = 0;
+    double broad = 0, narrow = 0;
     for (auto _ : state) {
         for (int i = 0; i < kMovers; ++i) {
             Vec3& p = at[static_cast<std::size_t>(i)];
@@ -404,10 +405,14 @@ void run_static_floor(benchmark::State& state) {
         }
         world.step();
         contacts += world.contacts().size();
+        broad += world.counters().broad_phase_seconds;
+        narrow += world.counters().narrow_phase_seconds;
         ++steps;
     }
     state.counters["contacts_per_step"] = static_cast<double>(contacts) / static_cast<double>(steps);
     state.counters["static"] = n_static;
+    state.counters["broad_ms"] = 1e3 * broad / static_cast<double>(steps);
+    state.counters["narrow_ms"] = 1e3 * narrow / static_cast<double>(steps);
 }
 
 void register_all() {

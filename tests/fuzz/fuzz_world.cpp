@@ -53,6 +53,7 @@ private:
     void add();
     void remove();
     void set_pose(bool as_move);
+    void move_batch();
     bool step();  // false when the step failed (rightly): the world's state is then not tracked
     void read_results(bool after_step);
     void stats();
@@ -268,6 +269,41 @@ void WorldFuzz::set_pose(bool as_move) {
     } else {
         o->pose = pose;
         o->moving = false;
+    }
+}
+
+// kairos_world_move_batch over every object that is not static (a static one now and then, which
+// refuses the batch): it succeeds when every move would, fails when one would, and a refused
+// batch moves nothing (the step after it is checked against a model with no moves).
+void WorldFuzz::move_batch() {
+    std::vector<kairos_object_id> ids;
+    std::vector<kairos_pose> ends;
+    std::vector<std::pair<Object*, PoseCase>> moves;
+    bool must_fail = false, may_fail = false;
+    for (Object& o : live_) {
+        if (o.is_static && !in_.rare(16)) continue;
+        const PoseCase end = make_pose_near(in_, o.pose.pose);
+        Verdict v;
+        if (o.is_static) v.require(KAIROS_ERROR_INVALID_ARGUMENT);
+        expect_pose(end, v);
+        must_fail = must_fail || v.expects_error();
+        may_fail = may_fail || !end.valid || !end.moderate || !o.model->moderate;
+        ids.push_back(o.id);
+        ends.push_back(end.pose);
+        moves.push_back({&o, end});
+    }
+    const bool null_ids = !ids.empty() && in_.rare(32);
+    const int32_t status = observe("kairos_world_move_batch", [&] {
+        return kairos_world_move_batch(world_, null_ids ? nullptr : ids.data(), ends.data(), ids.size());
+    });
+    if (null_ids) must_fail = true;
+    if (must_fail && status == KAIROS_OK) violation("kairos_world_move_batch accepted a batch with a bad move");
+    if (!must_fail && !may_fail && status != KAIROS_OK)
+        violation("kairos_world_move_batch refused valid moves: %s", kairos_last_error());
+    if (status != KAIROS_OK) return;
+    for (auto& [o, end] : moves) {
+        o->end = end;
+        o->moving = true;
     }
 }
 
@@ -783,7 +819,13 @@ void WorldFuzz::run() {
                 if (!step()) return;
                 break;
             case 12:
-                // Every object moves a little (or not at all), then the step: many movers at once.
+                // Every object moves a little (or not at all), then the step: many movers at once,
+                // one call each or one batch.
+                if (in_.pick(2) == 0) {
+                    move_batch();
+                    if (!step()) return;
+                    break;
+                }
                 for (Object& o : live_) {
                     if (o.is_static) continue;
                     const PoseCase end = make_pose_near(in_, o.pose.pose);
