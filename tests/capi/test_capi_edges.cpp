@@ -1101,4 +1101,61 @@ TEST(GjkEdges, LongBoxBesideACylinderAtGapsBothOrders) {
     kairos_shape_release(cylinder);
 }
 
+// A ball far smaller than the rounding of the positions (radius 1e-15 .. 1e-12 at about unit
+// distance) cast onto a unit ball given as a hull of two balls (a generic shape, so the GJK cast
+// runs, not the closed form): the normal is the radial direction at the contact, to 1e-6 rad. The
+// cast's final v is then x minus a support point within the tiny radius, pure rounding noise in
+// direction; it was taken as the normal (1.6 degrees off; found by fuzz_queries).
+TEST(GjkEdges, TinyBallOntoAGenericRoundShapeGetsTheRadialNormal) {
+    kairos_shape *ball = nullptr, *hull = nullptr;
+    ASSERT_EQ(kairos_shape_sphere(1, &ball), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_hull(ball, ball, &hull), KAIROS_OK);
+    const uint64_t seed = 20261127;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g(0, 1);
+    std::uniform_real_distribution<double> u(0, 1);
+    int hits = 0, off = 0;
+    double worst = 0;
+    for (int i = 0; i < 600; ++i) {
+        kairos_shape* tiny = nullptr;
+        const double radius = std::pow(10.0, -15 + 3 * u(rng));
+        ASSERT_EQ(kairos_shape_sphere(radius, &tiny), KAIROS_OK);
+        // From 2 .. 6 units away, head-on (every third case) or aimed within 0.8 of the centre.
+        double d[3] = {g(rng), g(rng), g(rng)};
+        const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double dist = 2 + 4 * u(rng);
+        const kairos_pose pa{{0, 0, 0}, {0, 0, 0, 1}};
+        const kairos_pose pb{{dist * d[0] / n, dist * d[1] / n, dist * d[2] / n}, {0, 1, 0, 0}};
+        double aim[3] = {0, 0, 0};
+        if (i % 3 != 0)
+            for (double& c : aim) c = 0.45 * (2 * u(rng) - 1);
+        const kairos_vec3 tb{aim[0] - pb.position.x, aim[1] - pb.position.y, aim[2] - pb.position.z};
+        kairos_cast_result r;
+        ASSERT_EQ(kairos_shape_cast(hull, &pa, {0, 0, 0}, tiny, &pb, tb, nullptr, &r), KAIROS_OK);
+        kairos_shape_release(tiny);
+        if (!r.hit) continue;
+        ++hits;
+        // B's centre at toi, and its direction from A's centre: the contact normal.
+        const double c[3] = {pb.position.x + r.toi * tb.x, pb.position.y + r.toi * tb.y, pb.position.z + r.toi * tb.z};
+        const double cn = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        // The angle from the cross product (acos near 1 resolves only 2e-8).
+        const double x[3] = {r.normal.y * c[2] - r.normal.z * c[1], r.normal.z * c[0] - r.normal.x * c[2],
+                             r.normal.x * c[1] - r.normal.y * c[0]};
+        const double cosine = (r.normal.x * c[0] + r.normal.y * c[1] + r.normal.z * c[2]) / cn;
+        const double angle = cosine > 0 ? std::asin(std::fmin(1.0, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / cn))
+                                        : 3.14159;
+        worst = std::fmax(worst, angle);
+        if (!(angle <= 1e-6)) {
+            if (++off <= 5)
+                ADD_FAILURE() << "seed " << seed << " case " << i << ": radius " << radius << ", normal " << angle
+                              << " rad off the radial direction (toi " << r.toi << ")";
+        }
+    }
+    std::printf("tiny balls onto a hull of balls: %d hits, worst normal %.3g rad\n", hits, worst);
+    EXPECT_EQ(off, 0);
+    EXPECT_GT(hits, 450);  // every head-on case and most aimed ones hit
+    kairos_shape_release(hull);
+    kairos_shape_release(ball);
+}
+
 }  // namespace
