@@ -172,8 +172,7 @@ struct LocalCast {
     Vec3 normal;            // v of the latest clip (not unit)
     Vec3 v;                 // final x - c
     Vec3 point_a, point_b;  // barycentric points of the final simplex (cores)
-    double size;            // largest distance from x to a point of the final simplex, or |x| if larger:
-                            // the magnitude v = x - c is rounded at
+    double size;            // max(|x|, the largest distance from x to a simplex point): v's rounding scale
     uint32_t iterations;
     Termination termination;
 };
@@ -387,9 +386,8 @@ private:
             sx->closest_points(out.point_a, out.point_b);
             out.size = std::sqrt(sx->max_norm_sq());
         }
-        // v = x - c is rounded at eps |x| too: a simplex of one point within a tiny radius of x
-        // is small, not v's rounding (a ball of radius 1e-15 cast onto a unit hull of spheres got
-        // a normal 1.6 degrees off from v's noise; found by fuzzing).
+        // v = x - c is rounded at eps |x| too (a one-point simplex within a radius of 1e-15 of x
+        // is small, v's direction noise: a normal 1.6 degrees off; found by fuzzing).
         out.size = std::fmax(out.size, std::sqrt(dot(x_, x_)));
         if (sup_.scale != 1) {
             const double inv = 1 / sup_.scale;  // exact: a power of two within 2^+-1000
@@ -427,11 +425,9 @@ private:
 // point, about the radius long) is the normal of the rounded shape's support plane through the
 // contact, exact to the tolerance, while the last clip may be an iteration older; it is used then,
 // unless it fails to oppose the motion r (a guard stop short of contact, or a coarse tolerance
-// stopping far from it): a clipping plane's normal always opposes r (found by fuzzing). Nor when
-// the radius is below 2^-20 of the simplex's size: v's direction then carries the rounding of the
-// core's projection (eps * size / radius), which tilts a long core's support plane by up to
-// eps * size^2 / radius (0.95 on a capsule 2e4 long of radius 7e-300; found by fuzzing), while a
-// clipping plane never lies past the shape.
+// stopping far from it; a clipping plane's normal always opposes r), or the radius is below 2^-20
+// of l.size: v's direction then carries rounding of eps * size / radius (0.95 rad on a capsule 2e4
+// long of radius 7e-300; found by fuzzing), while a clipping plane never lies past the shape.
 Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, Vec3 fallback) {
     if (!l.clipped) return fallback;
     if (margin > 0x1p-20 * l.size && l.termination != Termination::MaxIterations &&
