@@ -253,6 +253,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
     out.iterations = it;
     s.update_lambda();
+    s.refine_full_coordinates();
     // Witness points from coordinates that do not reproduce v (a sliver whose projection is right
     // and whose coordinates are not) would not be the distance apart: the nearest sub-simplex
     // whose coordinates do is taken instead (a single point always qualifies). Coordinates a

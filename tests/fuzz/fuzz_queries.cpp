@@ -158,6 +158,27 @@ real pair_aspect(const Posed& a, const Posed& b) {
     return last_aspect;
 }
 
+// Aspect of one shape by itself, in its local frame (aspect_of), cached per model for the input.
+// A pair can hide a needle: a hull of nearly collinear points 1e9 times longer than thick, across a
+// disk, makes an A - B of aspect about 1e4, while GJK's simplices still take the needle's support
+// points, whose slivers carry errors of eps times the needle's own aspect. An exactly
+// one-dimensional shape (a segment) reads infinite; its two support points make exact simplices,
+// so it passes.
+real shape_aspect(const Model& m) {
+    static uint64_t serial = ~uint64_t(0);
+    static std::vector<std::pair<const Model*, real>> cache;
+    if (serial != input_serial) serial = input_serial, cache.clear();
+    for (const auto& [model, aspect] : cache)
+        if (model == &m) return aspect;
+    const real aspect = aspect_of([&](const Vr& d) { return support_value(m, d) + support_value(m, -1 * d); });
+    cache.emplace_back(&m, aspect);
+    return aspect;
+}
+bool shape_within(const Model& m, real most) {
+    const real aspect = shape_aspect(m);
+    return aspect <= most || std::isinf(aspect);
+}
+
 // Whether GJK's accuracy is checked on this pair (the closest points, the symmetry, the bounds
 // from separating planes and inner balls, intersect against them): the accuracy contract of
 // docs/c-api.md ("Where the accuracy holds"). Moderate magnitudes; A - B of aspect at most 1e6
@@ -176,13 +197,16 @@ bool conditioned(const Posed& a, const Posed& b) {
     if (!(wa <= 1e6L * wb) || !(wb <= 1e6L * wa)) return false;
     const real apart = norm(to_real(b.pose.pose.position) - to_real(a.pose.pose.position));
     if (!(apart <= 1e6L * std::fmax(wa, wb))) return false;
-    return pair_aspect(a, b) <= 1e6L;
+    return pair_aspect(a, b) <= 1e6L && shape_within(a.model(), 1e6L) && shape_within(b.model(), 1e6L);
 }
 
 // Witness and contact points come from barycentric coordinates on a simplex of A - B, whose error
 // grows with the simplex's aspect: they are checked on pairs of aspect at most 1e5 (docs/c-api.md).
 constexpr real kPointsAspect = 1e5L;
-bool points_conditioned(const Posed& a, const Posed& b) { return conditioned(a, b) && pair_aspect(a, b) <= kPointsAspect; }
+bool points_conditioned(const Posed& a, const Posed& b) {
+    return conditioned(a, b) && pair_aspect(a, b) <= kPointsAspect && shape_within(a.model(), kPointsAspect) &&
+           shape_within(b.model(), kPointsAspect);
+}
 
 // Distance from the local origin to the farthest corner of the shape's local bounding box (the
 // motion cast's rA, rB: kairos.h).
