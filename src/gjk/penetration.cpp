@@ -18,9 +18,7 @@ using namespace kernels;
 constexpr double kEps = 2.220446049250313e-16;
 constexpr int kMaxVertices = 4 + 128;
 constexpr int kMaxFaces = 2 * kMaxVertices;
-// The horizon's hash set: a power of two at least twice the edges of every face.
-constexpr int kEdgeTable = 2048;
-static_assert(kEdgeTable >= 2 * 3 * kMaxFaces && kMaxVertices <= 256);
+static_assert(kMaxVertices <= 256 && kMaxFaces <= 32767);  // uint8_t vertex and int16_t face indices
 
 struct Vertex {
     Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)
@@ -36,6 +34,7 @@ struct Face {
     double l[3];    // the triangle's nearest point to the origin as a combination of the corners
     bool edge;      // that point is on an edge (the origin's projection falls outside)
     bool resolved;  // d, l and edge are known (see resolve); until then d is the plane's offset
+    int16_t adj[3];  // the face across edge k (v[k] -> v[k + 1]), by slot
 };
 
 struct Plane {
@@ -114,7 +113,7 @@ public:
             // give the depth (B moved by it along the axis touches A).
             if (face.d >= 0 && h - face.d <= tolerance * h)
                 return finish_converged(face, x, tolerance, Termination::RelativeError, out);
-            if (!expand(x)) return finish(face, Termination::NoProgress, out);
+            if (!expand(x, f)) return finish(face, Termination::NoProgress, out);
         }
     }
 
@@ -290,6 +289,21 @@ private:
             }
             put(nf_++, f);
         }
+        // Each edge's neighbour: the face holding the reverse edge. Faces wound inconsistently
+        // (rounding on a tetrahedron too thin to orient) have none: taken as flat, as above.
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) {
+                const int a = faces_[i].v[k], b = faces_[i].v[(k + 1) % 3];
+                int across = -1;
+                for (int j = 0; j < 4; ++j)
+                    if (j != i && edge_index(faces_[j], b, a) >= 0) across = j;
+                if (across < 0) {
+                    out.n = dot(m, hint_) < 0 ? -m : m;
+                    flat_ = 2;
+                    return Termination::NoProgress;
+                }
+                faces_[i].adj[k] = int16_t(across);
+            }
         interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
         return Termination::None;
     }
@@ -301,62 +315,60 @@ private:
     // Faces x lies on within rounding are where that happens (the hole pinched at a vertex whose
     // faces are nearly coplanar): so the faces are taken as seeing x beyond a margin of a few
     // roundings, and when that fails, with the faces x lies on included, then stricter.
-    bool expand(const Vertex& x) {
+    bool expand(const Vertex& x, int seed) {
         for (double margin : {1.0, -1.0, 16.0, -16.0})
-            if (expand(x, margin * floor())) return true;
+            if (expand(x, seed, margin * floor())) return true;
         return false;
     }
-    bool expand(const Vertex& x, double margin) {
-        int vis[kMaxFaces];  // the faces that see x, in index order
+    // The visible faces are the seed's connected region of faces that see x (a walk over the
+    // faces' neighbours, as in van den Bergen's and Bullet's expansions): it costs the region and
+    // its rim, not every face. Its rim is the horizon.
+    bool expand(const Vertex& x, int seed, double margin) {
+        if (!(dot(plane_[seed].n, x.w) - plane_[seed].off > margin)) return false;
+        ++epoch_;
+        int vis[kMaxFaces];  // the faces that see x
         int n_visible = 0;
-        for (int i = 0; i < nf_; ++i)
-            if (dot(plane_[i].n, x.w) - plane_[i].off > margin) vis[n_visible++] = i;
-        if (n_visible == 0) return false;
-        // Horizon: the directed edges of visible faces whose reverse is not on a visible face,
-        // found through a hash set of those edges (open addressing, keys from < 256 vertices).
-        const int ne = 3 * n_visible;
-        int cap = 16, bits = 4;
-        while (cap < 2 * ne) cap *= 2, ++bits;
-        uint32_t table[kEdgeTable];
-        constexpr uint32_t kEmpty = ~0u;
-        for (int i = 0; i < cap; ++i) table[i] = kEmpty;
-        auto slot_of = [&](uint32_t key) {
-            uint32_t h = (key * 2654435761u) >> (32 - bits);  // Knuth's multiplicative hash: high bits
-            while (table[h] != kEmpty && table[h] != key) h = (h + 1) & uint32_t(cap - 1);
-            return h;
-        };
-        for (int i = 0; i < n_visible; ++i) {
-            const Face& f = faces_[vis[i]];
-            for (int k = 0; k < 3; ++k) {
-                const uint32_t key = uint32_t(f.v[k]) << 8 | f.v[(k + 1) % 3];
-                table[slot_of(key)] = key;
-            }
-        }
-        int from[kMaxVertices], to[kMaxVertices];
+        int stack[kMaxFaces];
+        int top = 0;
+        int from[kMaxVertices], to[kMaxVertices], outside[kMaxVertices];
         int nh = 0;
-        for (int i = 0; i < n_visible; ++i) {
-            const Face& f = faces_[vis[i]];
+        mark_[seed] = epoch_ * 2 + 1;
+        stack[top++] = seed;
+        while (top > 0) {
+            const int fi = stack[--top];
+            vis[n_visible++] = fi;
+            const Face& f = faces_[fi];
             for (int k = 0; k < 3; ++k) {
-                const int a = f.v[k], b = f.v[(k + 1) % 3];
-                if (table[slot_of(uint32_t(b) << 8 | uint32_t(a))] != kEmpty) continue;  // shared
+                const int g = f.adj[k];
+                if (mark_[g] < epoch_ * 2) {  // not tested in this expansion
+                    const bool sees = dot(plane_[g].n, x.w) - plane_[g].off > margin;
+                    mark_[g] = epoch_ * 2 + (sees ? 1 : 0);
+                    if (sees) {
+                        stack[top++] = g;
+                        continue;
+                    }
+                }
+                if (mark_[g] == epoch_ * 2 + 1) continue;  // shared with another visible face
                 if (nh == kMaxVertices) return false;
-                from[nh] = a, to[nh] = b, ++nh;
+                from[nh] = f.v[k], to[nh] = f.v[(k + 1) % 3], outside[nh] = g, ++nh;
             }
         }
         // One cycle: every vertex starts at most one edge, and following them visits them all.
-        if (nh < 3 || nf_ - n_visible + nh > kMaxFaces) return false;
-        int next[kMaxVertices];
-        for (int i = 0; i < nv_; ++i) next[i] = -1;
+        if (nh < 3 || n_free_ + n_visible + (kMaxFaces - nf_) < nh) return false;
+        int start_of[kMaxVertices], end_of[kMaxVertices];  // the horizon edge leaving / reaching a vertex
+        for (int i = 0; i < nh; ++i) start_of[from[i]] = -1, end_of[to[i]] = -1;
         for (int i = 0; i < nh; ++i) {
-            if (next[from[i]] != -1) return false;
-            next[from[i]] = to[i];
+            if (start_of[from[i]] != -1 || end_of[to[i]] != -1) return false;
+            start_of[from[i]] = i, end_of[to[i]] = i;
         }
-        int at = from[0], steps = 0;
+        for (int i = 0; i < nh; ++i)
+            if (!on_horizon(to[i], from, nh)) return false;
+        int at = 0, steps = 0;
         do {
-            at = next[at];
+            at = start_of[to[at]];
             ++steps;
-        } while (at != -1 && at != from[0] && steps <= nh);
-        if (at != from[0] || steps != nh) return false;
+        } while (at != 0 && steps <= nh);
+        if (at != 0 || steps != nh) return false;
         // The new faces, checked before anything changes.
         const int xi = nv_;
         verts_[xi] = x;
@@ -366,27 +378,44 @@ private:
             if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
         }
         ++nv_;
-        // The new faces take the visible ones' slots, then the end; slots left over are filled
-        // from the end, the highest first (the faces above it are then all kept ones).
-        int k = 0;
-        for (; k < nh && k < n_visible; ++k) put(vis[k], fresh[k]);
-        for (int i = k; i < nh; ++i) put(nf_++, fresh[i]);
-        for (int h = n_visible - 1; h >= k; --h) {
-            --nf_;
-            if (vis[h] != nf_) move(nf_, vis[h]);
+        // The new faces take the visible faces' slots, then freed ones, then the end. A visible
+        // region with vertices inside it (they leave the polytope) has fewer rim edges than faces
+        // (n + 2 - 2 i for n faces around i inner vertices): its slots left over are freed.
+        int slot[kMaxVertices];
+        for (int i = 0; i < nh; ++i) slot[i] = i < n_visible ? vis[i] : (n_free_ > 0 ? free_[--n_free_] : nf_++);
+        for (int h = nh; h < n_visible; ++h) {
+            free_[n_free_++] = vis[h];
+            key_[vis[h]] = INFINITY;
+            faces_[vis[h]].resolved = true;
         }
+        for (int i = 0; i < nh; ++i) {
+            Face& f = fresh[i];
+            f.adj[0] = int16_t(outside[i]);
+            f.adj[1] = int16_t(slot[start_of[to[i]]]);  // across to -> x: the new face leaving `to`
+            f.adj[2] = int16_t(slot[end_of[from[i]]]);  // across x -> from: the one reaching `from`
+            Face& g = faces_[outside[i]];
+            g.adj[edge_index(g, to[i], from[i])] = int16_t(slot[i]);
+        }
+        for (int i = 0; i < nh; ++i) put(slot[i], fresh[i]);
         return true;
+    }
+    static bool on_horizon(int v, const int* from, int nh) {
+        for (int i = 0; i < nh; ++i)
+            if (from[i] == v) return true;
+        return false;
+    }
+    // The index k of the edge a -> b of face f (v[k] == a, v[k + 1] == b), or -1.
+    static int edge_index(const Face& f, int a, int b) {
+        for (int k = 0; k < 3; ++k)
+            if (f.v[k] == a && f.v[(k + 1) % 3] == b) return k;
+        return -1;
     }
 
     void put(int i, const Face& f) {
+        mark_[i] = 0;
         faces_[i] = f;
         key_[i] = f.d;
         plane_[i] = {f.n, f.off};
-    }
-    void move(int from, int to) {
-        faces_[to] = faces_[from];
-        key_[to] = key_[from];
-        plane_[to] = plane_[from];
     }
 
     // The nearest face's nearest point to the origin, as a combination of its corners.
@@ -469,6 +498,11 @@ private:
     Slots<Face, kMaxFaces> faces_;
     Slots<double, kMaxFaces> key_;
     Slots<Plane, kMaxFaces> plane_;
+    // mark_[i] == 2 epoch_ + 1: face i sees the point being added; 2 epoch_: it does not.
+    Slots<uint32_t, kMaxFaces> mark_;
+    uint32_t epoch_ = 0;
+    int free_[kMaxFaces];  // slots of faces that left the polytope (key_ INFINITY, never reached)
+    int n_free_ = 0;
     int nv_ = 0, nf_ = 0;
 };
 
