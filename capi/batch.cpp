@@ -44,13 +44,13 @@ inline Vec3 point_at(const kairos_vec3* points, size_t i) {
 }
 
 // Pose i of an array already checked (NULL: identity).
-[[gnu::always_inline]] inline Transform transform_at(const kairos_pose* poses, size_t i, const char* fn) {
-    return read_transform(poses == nullptr ? nullptr : &poses[i], fn, "poses");
+inline Transform transform_at(const kairos_pose* poses, size_t i) {
+    return poses == nullptr ? Transform{} : checked_transform(poses[i]);
 }
 
-Pose pose_of(const kairos_pose& p, const char* fn) {
-    const BodyPose b = read_pose(&p, fn, "motion");
-    return {b.position, b.orientation};
+// A motion's pose already checked.
+Pose checked_pose(const kairos_pose& p) {
+    return {{p.position.x, p.position.y, p.position.z}, unit_quat(p.orientation, squared_length(p.orientation))};
 }
 
 // Runs query(i, result) for i in [0, count) on the calling thread or the world's workers, into
@@ -90,6 +90,24 @@ void run_batch(size_t count, kairos_world* workers, Result* out, const char* fn,
     std::copy(scratch.get(), scratch.get() + count, out);
 }
 
+// What the three batches share, in the single call's order: every query's elements
+// (check(i), which fails naming the first bad one), the settings, then out; then each query's
+// core result (compute(i, settings)) goes through the finiteness guard into its C layout.
+template <class Result, class Check, class Compute>
+void batch(const char* fn, size_t count, Check&& check, const kairos_query_settings* settings, kairos_world* workers,
+           Result* out, Compute&& compute) {
+    for (size_t i = 0; i < count; ++i) check(i);
+    const QuerySettings qs = read_query_settings(settings, fn, "settings");
+    if (count == 0) return;
+    require_pointer(out, fn, "out");
+    run_batch(count, workers, out, fn, [&](size_t i, Result& r) {
+        const auto core = compute(i, qs);
+        if (!is_finite_result(core)) return false;
+        write_c(core, r);
+        return true;
+    });
+}
+
 }  // namespace
 
 extern "C" {
@@ -105,21 +123,15 @@ KAIROS_API int32_t kairos_distance_batch(const kairos_shape* const* a, const kai
             require_pointer(a, fn, "a");
             require_pointer(b, fn, "b");
         }
-        for (size_t i = 0; i < count; ++i) {
+        auto check = [&](size_t i) {
             check_shape_element(a, i, fn, "a");
             check_pose_element(poses_a, i, fn, "poses_a");
             check_shape_element(b, i, fn, "b");
             check_pose_element(poses_b, i, fn, "poses_b");
-        }
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        if (count == 0) return;
-        require_pointer(out, fn, "out");
-        run_batch(count, workers, out, fn, [&](size_t i, kairos_distance_result& r) {
-            const DistanceResult d = gjk_distance(shape_of(a[i]), transform_at(poses_a, i, fn), shape_of(b[i]),
-                                                  transform_at(poses_b, i, fn), qs.tolerance, qs.max_iterations);
-            if (!is_finite_result(d)) return false;
-            write_c(d, r);
-            return true;
+        };
+        batch(fn, count, check, settings, workers, out, [&](size_t i, const QuerySettings& qs) {
+            return gjk_distance(shape_of(a[i]), transform_at(poses_a, i), shape_of(b[i]), transform_at(poses_b, i),
+                                qs.tolerance, qs.max_iterations);
         });
     });
 }
@@ -135,25 +147,18 @@ KAIROS_API int32_t kairos_shape_cast_batch(const kairos_shape* const* a, const k
             require_pointer(a, fn, "a");
             require_pointer(b, fn, "b");
         }
-        for (size_t i = 0; i < count; ++i) {
+        auto check = [&](size_t i) {
             check_shape_element(a, i, fn, "a");
             check_pose_element(poses_a, i, fn, "poses_a");
             check_point_element(translations_a, i, fn, "translations_a");
             check_shape_element(b, i, fn, "b");
             check_pose_element(poses_b, i, fn, "poses_b");
             check_point_element(translations_b, i, fn, "translations_b");
-        }
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        if (count == 0) return;
-        require_pointer(out, fn, "out");
-        run_batch(count, workers, out, fn, [&](size_t i, kairos_cast_result& r) {
-            const CastResult c = kairos::shape_cast(shape_of(a[i]), transform_at(poses_a, i, fn),
-                                                    point_at(translations_a, i), shape_of(b[i]),
-                                                    transform_at(poses_b, i, fn), point_at(translations_b, i),
-                                                    qs.tolerance, qs.max_iterations);
-            if (!is_finite_result(c)) return false;
-            write_c(c, r);
-            return true;
+        };
+        batch(fn, count, check, settings, workers, out, [&](size_t i, const QuerySettings& qs) {
+            return kairos::shape_cast(shape_of(a[i]), transform_at(poses_a, i), point_at(translations_a, i),
+                                      shape_of(b[i]), transform_at(poses_b, i), point_at(translations_b, i),
+                                      qs.tolerance, qs.max_iterations);
         });
     });
 }
@@ -170,31 +175,24 @@ KAIROS_API int32_t kairos_motion_cast_batch(const kairos_shape* const* a, const 
             require_pointer(b, fn, "b");
             require_pointer(motions_b, fn, "motions_b");
         }
-        for (size_t i = 0; i < count; ++i) {
+        auto check = [&](size_t i) {
             check_shape_element(a, i, fn, "a");
             // The motions' poses as elements of arrays of (start, end) pairs: "motions_a[3].end".
             const kairos_motion& ma = motions_a[i];
             const kairos_motion& mb = motions_b[i];
-            char name[96];
             const kairos_pose* poses[4] = {&ma.start, &ma.end, &mb.start, &mb.end};
             for (int k = 0; k < 4; ++k) {
                 if (passes_pose_test(*poses[k], squared_length(poses[k]->orientation))) continue;
+                char name[96];
                 std::snprintf(name, sizeof name, "motions_%c[%zu].%s", k < 2 ? 'a' : 'b', i, k % 2 == 0 ? "start" : "end");
                 read_pose_checked(poses[k], fn, name);
             }
             check_shape_element(b, i, fn, "b");
-        }
-        const QuerySettings qs = read_query_settings(settings, fn, "settings");
-        if (count == 0) return;
-        require_pointer(out, fn, "out");
-        run_batch(count, workers, out, fn, [&](size_t i, kairos_cast_result& r) {
-            const Motion ma(pose_of(motions_a[i].start, fn), pose_of(motions_a[i].end, fn));
-            const Motion mb(pose_of(motions_b[i].start, fn), pose_of(motions_b[i].end, fn));
-            const CastResult c =
-                kairos::motion_cast(shape_of(a[i]), ma, shape_of(b[i]), mb, qs.tolerance, qs.max_iterations);
-            if (!is_finite_result(c)) return false;
-            write_c(c, r);
-            return true;
+        };
+        batch(fn, count, check, settings, workers, out, [&](size_t i, const QuerySettings& qs) {
+            const Motion ma(checked_pose(motions_a[i].start), checked_pose(motions_a[i].end));
+            const Motion mb(checked_pose(motions_b[i].start), checked_pose(motions_b[i].end));
+            return kairos::motion_cast(shape_of(a[i]), ma, shape_of(b[i]), mb, qs.tolerance, qs.max_iterations);
         });
     });
 }

@@ -134,13 +134,19 @@ inline void check_pose_element(const kairos_pose* poses, size_t i, const char* f
 // normalised as read_pose does (four divisions, not a reciprocal: folding the normalisation into
 // the matrix, or multiplying by 1/n, moves answers at the rounding limit by an ulp of the
 // rotation, which GjkEdges' sweep showed can move a touching contact point by 1.5e-10 of the size).
+// checked_transform: a pose already accepted (a batch checks its arrays before computing).
+[[gnu::always_inline]] inline Transform checked_transform(const kairos_pose& pose, double nn) {
+    const kairos_vec3& p = pose.position;
+    return {to_matrix(unit_quat(pose.orientation, nn)), {p.x, p.y, p.z}};
+}
+[[gnu::always_inline]] inline Transform checked_transform(const kairos_pose& pose) {
+    return checked_transform(pose, squared_length(pose.orientation));
+}
 [[gnu::always_inline]] inline Transform read_transform(const kairos_pose* pose, const char* function, const char* name) {
     if (pose == nullptr) return {};
-    const kairos_vec3& p = pose->position;
-    const kairos_quat& q = pose->orientation;
-    const double nn = squared_length(q);
+    const double nn = squared_length(pose->orientation);
     if (!passes_pose_test(*pose, nn)) read_pose_checked(pose, function, name);  // fails with the message, or accepts it
-    return {to_matrix(unit_quat(q, nn)), {p.x, p.y, p.z}};
+    return checked_transform(*pose, nn);
 }
 
 // Query settings (frozen struct: struct_size must equal its size). NULL means defaults.
