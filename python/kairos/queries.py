@@ -288,6 +288,20 @@ def _out(out: Optional[np.ndarray], n: int, dtype: np.dtype, inputs: List[Any]) 
     return out
 
 
+def _call(batch: _Batch, fn: Any, dtype: np.dtype, settings: Optional[QuerySettings],
+          workers: Optional[World], out: Optional[np.ndarray]) -> np.ndarray:
+    """Runs a C batch function on the gathered arguments: its arrays in order, then the count,
+    the settings, the workers and the result array (the layout of all three batches)."""
+    n = batch.count()
+    w = _workers(workers)
+    ptrs = batch.addresses(n)
+    result = _out(out, n, dtype, batch.args)
+    status = fn(*ptrs, n, settings_c(settings), w, result.ctypes.data)
+    if status:
+        raise error_for(status)
+    return result
+
+
 _POSE = ((7,),)
 _VEC = ((3,),)
 _MOTION = ((14,), (2, 7))
@@ -312,15 +326,7 @@ def distance_batch(a: ShapesLike, poses_a: Rows, b: ShapesLike, poses_b: Rows,
     batch.rows(poses_a, "poses_a", 7, _POSE)
     batch.shapes(b, "b")
     batch.rows(poses_b, "poses_b", 7, _POSE)
-    n = batch.count()
-    w = _workers(workers)
-    ptrs = batch.addresses(n)
-    result = _out(out, n, DISTANCE_DTYPE, batch.args)
-    status = _lib.kairos_distance_batch(ptrs[0], ptrs[1], ptrs[2], ptrs[3], n,
-                                        settings_c(settings), w, result.ctypes.data)
-    if status:
-        raise error_for(status)
-    return result
+    return _call(batch, _lib.kairos_distance_batch, DISTANCE_DTYPE, settings, workers, out)
 
 
 def shape_cast_batch(a: ShapesLike, poses_a: Rows, translations_a: Rows,
@@ -337,15 +343,7 @@ def shape_cast_batch(a: ShapesLike, poses_a: Rows, translations_a: Rows,
     batch.shapes(b, "b")
     batch.rows(poses_b, "poses_b", 7, _POSE)
     batch.rows(translations_b, "translations_b", 3, _VEC)
-    n = batch.count()
-    w = _workers(workers)
-    ptrs = batch.addresses(n)
-    result = _out(out, n, CAST_DTYPE, batch.args)
-    status = _lib.kairos_shape_cast_batch(ptrs[0], ptrs[1], ptrs[2], ptrs[3], ptrs[4], ptrs[5],
-                                          n, settings_c(settings), w, result.ctypes.data)
-    if status:
-        raise error_for(status)
-    return result
+    return _call(batch, _lib.kairos_shape_cast_batch, CAST_DTYPE, settings, workers, out)
 
 
 def motion_cast_batch(a: ShapesLike, motions_a: ArrayLike, b: ShapesLike, motions_b: ArrayLike,
@@ -361,12 +359,4 @@ def motion_cast_batch(a: ShapesLike, motions_a: ArrayLike, b: ShapesLike, motion
     batch.rows(motions_a, "motions_a", 14, _MOTION)
     batch.shapes(b, "b")
     batch.rows(motions_b, "motions_b", 14, _MOTION)
-    n = batch.count()
-    w = _workers(workers)
-    ptrs = batch.addresses(n)
-    result = _out(out, n, CAST_DTYPE, batch.args)
-    status = _lib.kairos_motion_cast_batch(ptrs[0], ptrs[1], ptrs[2], ptrs[3], n,
-                                           settings_c(settings), w, result.ctypes.data)
-    if status:
-        raise error_for(status)
-    return result
+    return _call(batch, _lib.kairos_motion_cast_batch, CAST_DTYPE, settings, workers, out)
