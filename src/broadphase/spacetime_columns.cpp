@@ -4,6 +4,7 @@
 #include "broadphase/spacetime_sap.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -152,7 +153,9 @@ void SpacetimeSap::rekey_all() {
         const Record& r = records_[id];
         const Aabb k = moving_flag_[id] ? union_box(r.box, r.box_end) : r.box;
         Member& m = members_[id];
-        if (m.in_statics) continue;  // never moved: only objects that are not static are re-keyed
+        // Never static: move() refuses static objects, and set_static re-lists an object by its
+        // box and clears its stale flag (on_teleport), so none reaches rekeys_.
+        assert(!m.in_statics);
         if (m.keyed.min == k.min && m.keyed.max == k.max) {
             // Same key (a move back to where the last step swept from, or a still object): the
             // entries stand, but a mover's columns must still be swept, and on_step groups the
