@@ -241,6 +241,7 @@ void World::step() {
         if (o.end.position == o.pose.position && o.end.orientation.x == o.pose.orientation.x &&
             o.end.orientation.y == o.pose.orientation.y && o.end.orientation.z == o.pose.orientation.z &&
             o.end.orientation.w == o.pose.orientation.w) {
+            o.pose = o.end;  // equal, but the caller's bits: -0 for 0 (get_pose returns what was given)
             o.moving = false;
             if (o.loose) {
                 o.box = tight_box(*o.shape, o.pose, {});

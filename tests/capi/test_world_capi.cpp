@@ -506,6 +506,16 @@ TEST_F(WorldFixture, GettersReturnThePoseNowAndTheUserData) {
     EXPECT_EQ(got.position.y, 5.0);
     EXPECT_EQ(got.position.z, 6.5);
     EXPECT_EQ(got.orientation.w, 1.0);
+    // A move to a pose equal to the current one but for signed zeros (a still object) leaves the
+    // pose the caller gave, bit for bit (found by fuzz_world: +0 came back for -0).
+    kairos_pose zero = at(0, 0, 0), minus_zero = at(-0.0, 0, -0.0);
+    minus_zero.orientation = {-0.0, 0, 0, 1};
+    ASSERT_EQ(kairos_world_set_pose(w, id, &zero), KAIROS_OK);
+    ASSERT_EQ(kairos_world_move(w, id, &minus_zero), KAIROS_OK);
+    ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+    ASSERT_EQ(kairos_world_get_pose(w, id, &got), KAIROS_OK);
+    EXPECT_EQ(std::memcmp(&got.position, &minus_zero.position, sizeof got.position), 0);
+    EXPECT_TRUE(std::signbit(got.orientation.x));
     // A stale id: an error, and nothing written.
     ASSERT_EQ(kairos_world_remove(w, id), KAIROS_OK);
     kairos_pose sentinel;

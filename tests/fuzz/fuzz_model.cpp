@@ -95,6 +95,10 @@ real support_value(const Placed& p, const Vr& d) {
 
 real gap(const Placed& a, const Placed& b, const Vr& u) { return -support_value(b, -1 * u) - support_value(a, u); }
 
+real own_aspect(const Model& m) {
+    return aspect_of([&](const Vr& d) { return support_value(m, d) + support_value(m, -1 * d); });
+}
+
 const std::vector<Vr>& unit_directions() {
     static const std::vector<Vr> dirs = [] {
         std::vector<Vr> v;

@@ -90,50 +90,6 @@ void widths(const Model& m, real& out_widest, real& out_middle) {
         if (std::fabs(dot(dirs[i], n)) < 0.6L * norm(dirs[i]) * norm(n)) out_middle = std::fmin(out_middle, w[i]);
 }
 
-// Aspect of a convex set given by its width w(d) = h(d) + h(-d): its longest width over the
-// largest width across that direction. The longest direction comes from a hill climb on w from the
-// widest of the 26 test directions: a needle's width along d is about its length times |cos|, so
-// the test directions alone can be far from its axis and read a needle as a fat shape. The climb
-// ends at steps of 1e-8 rad, so aspects up to about 1e8 read true; a flat shape's aspect is that of
-// its outline (about 1), a segment's is infinite.
-template <class Width>
-real aspect_of(const Width& width) {
-    Vr axis;
-    real longest = -1;
-    for (const Vr& d : unit_directions()) {
-        const real w = width(d);
-        if (w > longest) longest = w, axis = d;
-    }
-    if (!(longest > 0)) return 1;  // a point: no direction is longer
-    const Vr basis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    // A move must gain more than rounding (a round shape's width is flat, and its rounding noise
-    // would let the climb wander for ever: found by fuzzing), and each step size makes at most 16.
-    for (real step = 0.25L; step > 1e-8L; step *= 0.5L) {
-        bool moved = true;
-        for (int moves = 0; moved && moves < 16; ++moves) {
-            moved = false;
-            for (const Vr& e : basis)
-                for (real sign : {real(1), real(-1)}) {
-                    Vr c = axis + (sign * step) * e;
-                    c = (1 / norm(c)) * c;
-                    const real w = width(c);
-                    if (w > longest * (1 + 1e-18L)) longest = w, axis = c, moved = true;
-                }
-        }
-    }
-    // Two unit vectors across the axis.
-    const Vr& e = std::fabs(axis.x) < 0.6L ? basis[0] : basis[1];
-    Vr u{axis.y * e.z - axis.z * e.y, axis.z * e.x - axis.x * e.z, axis.x * e.y - axis.y * e.x};
-    u = (1 / norm(u)) * u;
-    const Vr v{axis.y * u.z - axis.z * u.y, axis.z * u.x - axis.x * u.z, axis.x * u.y - axis.y * u.x};
-    real across = 0;
-    for (int k = 0; k < 12; ++k) {
-        const real t = k * 3.14159265358979323846L / 12;
-        across = std::fmax(across, width(std::cos(t) * u + std::sin(t) * v));
-    }
-    return across > 0 ? longest / across : INFINITY;
-}
-
 // Counts the inputs, so that a cache never outlives the shapes of the input that filled it.
 uint64_t input_serial = 0;
 
@@ -158,24 +114,16 @@ real pair_aspect(const Posed& a, const Posed& b) {
     return last_aspect;
 }
 
-// Aspect of one shape by itself, in its local frame (aspect_of), cached per model for the input.
-// A pair can hide a needle: a hull of nearly collinear points 1e9 times longer than thick, across a
-// disk, makes an A - B of aspect about 1e4, while GJK's simplices still take the needle's support
-// points, whose slivers carry errors of eps times the needle's own aspect. An exactly
-// one-dimensional shape (a segment) reads infinite; its two support points make exact simplices,
-// so it passes.
-real shape_aspect(const Model& m) {
+// Each shape's own aspect counts too (own_aspect, fuzz_support.hpp), cached per model for the
+// input: a needle across a disk hides in A - B's aspect.
+bool shape_within(const Model& m, real most) {
     static uint64_t serial = ~uint64_t(0);
     static std::vector<std::pair<const Model*, real>> cache;
     if (serial != input_serial) serial = input_serial, cache.clear();
     for (const auto& [model, aspect] : cache)
-        if (model == &m) return aspect;
-    const real aspect = aspect_of([&](const Vr& d) { return support_value(m, d) + support_value(m, -1 * d); });
+        if (model == &m) return aspect <= most || std::isinf(aspect);
+    const real aspect = own_aspect(m);
     cache.emplace_back(&m, aspect);
-    return aspect;
-}
-bool shape_within(const Model& m, real most) {
-    const real aspect = shape_aspect(m);
     return aspect <= most || std::isinf(aspect);
 }
 
