@@ -28,6 +28,39 @@ struct LocalDistance {
     Termination termination;
 };
 
+// Coordinates of the origin in a full simplex again, in long double from the support points,
+// when the double ones do not put it at the origin (within 2^-40 of the simplex's size). On a
+// sliver (a needle 1e6 long across a slab 1e-10 thick) the signed volumes of the rounded y_i
+// carry errors of eps L / h, and the common point sum lambda_i a_i then lay outside B by far
+// more than B's thickness. long double has a 64-bit significand on x86-64 (113 bits on
+// aarch64; on targets where it is double this changes nothing). Rare: intersecting queries
+// whose tetrahedron is poorly conditioned.
+void refine_full_coordinates(Simplex& s) {
+    if (s.bits != 15u || s.coordinates_reproduce_v(0x1p-80)) return;
+    using L = long double;
+    L y3[4][3];
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) y3[i][k] = L(s.pa[i][k]) - L(s.pb[i][k]);
+    auto triple = [](const L* p, const L* q, const L* r) {
+        return p[0] * (q[1] * r[2] - q[2] * r[1]) + p[1] * (q[2] * r[0] - q[0] * r[2]) +
+               p[2] * (q[0] * r[1] - q[1] * r[0]);
+    };
+    L e[3][3];
+    for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) e[j][k] = y3[j + 1][k] - y3[0][k];
+    const L vol[4] = {triple(y3[1], y3[2], y3[3]), -triple(y3[0], e[1], e[2]), -triple(e[0], y3[0], e[2]),
+                      -triple(e[0], e[1], y3[0])};
+    L sum = 0;
+    for (const L& x : vol) sum += x;
+    if (!(std::fabs(sum) > 0)) return;
+    double refined[4];
+    for (int i = 0; i < 4; ++i) {
+        const L l = vol[i] / sum;
+        refined[i] = l > 0 ? double(l) : 0.0;
+    }
+    for (int i = 0; i < 4; ++i) s.lambda[i] = refined[i];
+}
+
 // True when sqrt(nv) < sqrt(lower_sq) - E, with E = 16 eps ||w|| the rounding allowance of the bound
 // (v.w carries an absolute error of a few eps ||v|| ||w||). Squares only: lower_sq - nv =
 // (L - |v|)(L + |v|) and L + |v| <= 2L, so (lower_sq - nv)^2 > 4 lower_sq E^2 implies L - |v| > E.
@@ -253,7 +286,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
     out.iterations = it;
     s.update_lambda();
-    s.refine_full_coordinates();
+    refine_full_coordinates(s);
     // Witness points from coordinates that do not reproduce v (a sliver whose projection is right
     // and whose coordinates are not) would not be the distance apart: the nearest sub-simplex
     // whose coordinates do is taken instead (a single point always qualifies). Coordinates a

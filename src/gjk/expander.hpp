@@ -1,0 +1,512 @@
+// SPDX-License-Identifier: MIT
+// The expanding polytope algorithm (van den Bergen's EPA; docs/algorithms.md §2b) on the cores'
+// configuration-space obstacle C = A - B, in A's frame, with fixed-size arrays (no allocation):
+// the polytope, its faces and their neighbours, the expansion step and its rounding rules. Used
+// by signed_distance (penetration.cpp) only.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "gjk/support_kernels.hpp"
+#include "gjk/termination.hpp"
+#include "math/math.hpp"
+
+namespace kairos {
+namespace epa_detail {
+
+using namespace kernels;
+
+inline constexpr double kEps = 2.220446049250313e-16;
+inline constexpr int kMaxVertices = 4 + 128;
+inline constexpr int kMaxFaces = 2 * kMaxVertices;
+static_assert(kMaxVertices <= 256 && kMaxFaces <= 32767);  // uint8_t vertex and int16_t face indices
+
+struct Vertex {
+    Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)
+};
+struct Face {
+    uint8_t v[3];  // counter-clockwise seen from outside
+    Vec3 n;        // outward unit normal
+    // The origin's distance to the triangle once resolved (not its plane: a sliver's plane, tilted
+    // by rounding, can pass nearer the origin than any of its points), or the plane's offset
+    // n . x when the origin lies beyond it (< 0).
+    double d;
+    double off;     // n . x for x on the face
+    double l[3];    // the triangle's nearest point to the origin as a combination of the corners
+    bool edge;      // that point is on an edge (the origin's projection falls outside)
+    bool resolved;  // d, l and edge are known (see resolve); until then d is the plane's offset
+    int16_t adj[3];  // the face across edge k (v[k] -> v[k + 1]), by slot
+};
+
+struct Plane {
+    Vec3 n;
+    double off;
+};
+
+// Fixed storage whose slots start uninitialised: Vec3 zeroes itself, and zeroing the polytope's
+// arrays (30 kB) cost more than the expansion of a box pair. A slot is written before it is read.
+template <class T, int N>
+class Slots {
+public:
+    T& operator[](int i) { return slot_[i].t; }
+    const T& operator[](int i) const { return slot_[i].t; }
+
+private:
+    union Slot {
+        T t;
+        Slot() {}
+    };
+    Slot slot_[N];
+};
+
+// The cores' depth in A's frame at the caller's scale: a - b = depth * n for the deepest points.
+struct CoreDepth {
+    double depth = 0;
+    Vec3 n, point_a, point_b;
+    uint32_t iterations = 0;
+    Termination termination = Termination::None;
+    bool flat = false;  // C has no interior (or a sliver's): point_a and point_b unset
+};
+
+template <class Pair>
+class Expander {
+public:
+    Expander(Pair pair, Vec3 hint, uint32_t budget) : pair_(pair), hint_(hint), budget_(budget) {}
+
+    CoreDepth run(double tolerance) {
+        CoreDepth out;
+        out.termination = build_tetrahedron(out);
+        if (out.termination != Termination::None) return finish(out);
+        double upper = INFINITY;  // smallest support value of C along a unit direction (upper_n_)
+        for (;;) {
+            // The least key among the faces; resolving raises a key, so after a resolve the face
+            // is still the least when its key stays at or below the runner-up's, and the
+            // runner-up is the least otherwise (a full scan only when that one is unresolved).
+            int f = -1;
+            for (;;) {
+                int second = -1;
+                f = 0;
+                for (int i = 1; i < nf_; ++i) {
+                    if (key_[i] < key_[f]) {
+                        second = f;
+                        f = i;
+                    } else if (second < 0 || key_[i] < key_[second]) {
+                        second = i;
+                    }
+                }
+                if (faces_[f].resolved) break;
+                resolve(faces_[f]);
+                key_[f] = faces_[f].d;
+                if (second < 0 || key_[f] <= key_[second]) break;
+                f = second;
+                if (faces_[f].resolved) break;
+            }
+            const Face face = faces_[f];
+            if (calls_ >= budget_ || nv_ == kMaxVertices) return finish(face, Termination::MaxIterations, out);
+            Vertex x;
+            x.w = support(face.n, x);
+            const double h = dot(face.n, x.w);
+            if (h < upper) upper = h, upper_n_ = face.n, upper_x_ = x;  // depth <= C's support along any unit n
+            const double gap = h - face.off;
+            // Support point on the face's plane within the rounding of points of C's size.
+            if (gap <= floor()) return finish_converged(face, x, tolerance, Termination::RepeatedSupport, out);
+            // The face's own support value, not the smallest seen: the axis returned must itself
+            // give the depth (B moved by it along the axis touches A).
+            if (face.d >= 0 && h - face.d <= tolerance * h)
+                return finish_converged(face, x, tolerance, Termination::RelativeError, out);
+            if (!expand(x, f)) return finish(face, Termination::NoProgress, out);
+        }
+    }
+
+private:
+    // C's support point along d at the working scale (set by build_tetrahedron).
+    Vec3 support(Vec3 d, Vertex& x) {
+        ++calls_;
+        const Vec3 w = pair_(d, x.a, x.b);
+        x.w = w;
+        const double m = max_abs(w);
+        if (m > size_) size_ = m;
+        return w;
+    }
+    // Rounding of a support value or a face offset of points of C's size.
+    double floor() const { return 64 * kEps * size_; }
+    // C thinner than this across its line or plane is taken as a segment or a polygon (depth 0,
+    // off by at most this): a needle or a plate 1e-9 of its size thick makes a sliver tetrahedron
+    // whose faces' normals rounding turns along the needle (a depth along it, found by fuzzing).
+    double thin() const { return 1e-9 * size_; }
+
+    int add_vertex(const Vertex& x) {
+        verts_[nv_] = x;
+        return nv_++;
+    }
+
+    // The face through i, j, k (in that winding): false when its normal is not defined to
+    // rounding (a sliver).
+    bool make_face(int i, int j, int k, Face& f) const {
+        const Vec3 e1 = verts_[j].w - verts_[i].w, e2 = verts_[k].w - verts_[i].w;
+        const Vec3 n = cross(e1, e2);
+        const double nn = dot(n, n);
+        if (!(nn > (64 * kEps) * (64 * kEps) * dot(e1, e1) * dot(e2, e2))) return false;
+        f.v[0] = uint8_t(i), f.v[1] = uint8_t(j), f.v[2] = uint8_t(k);
+        f.n = (1 / std::sqrt(nn)) * n;
+        f.off = (dot(f.n, verts_[i].w) + dot(f.n, verts_[j].w) + dot(f.n, verts_[k].w)) / 3;
+        f.d = f.off;
+        f.resolved = false;
+        return true;
+    }
+
+    // Where the origin's nearest point on face f lies: the area coordinates of its projection
+    // p = off n, or, when p falls outside the triangle, the nearest point of its edges, whose
+    // distance (above the plane's) becomes f.d. Done only for faces that come up as the nearest
+    // (most never do): d can only grow, so a face whose d is resolved and least is the nearest.
+    void resolve(Face& f) const {
+        f.resolved = true;
+        const Vec3 w[3] = {verts_[f.v[0]].w, verts_[f.v[1]].w, verts_[f.v[2]].w};
+        const Vec3 p = f.off * f.n;
+        double sum = 0;
+        bool inside = true;
+        for (int c = 0; c < 3; ++c) {
+            f.l[c] = dot(f.n, cross(w[(c + 1) % 3] - p, w[(c + 2) % 3] - p));
+            sum += f.l[c];
+            inside = inside && f.l[c] >= 0;
+        }
+        f.edge = !(inside || f.off < 0);
+        if (!f.edge) {
+            const double s = sum > 0 ? 1 / sum : 0;
+            for (double& c : f.l) c = sum > 0 ? (c > 0 ? c * s : 0) : 1.0 / 3;
+            return;
+        }
+        double best = INFINITY;
+        for (int c = 0; c < 3; ++c) {
+            const Vec3 e = w[(c + 1) % 3] - w[c];
+            const double ee = dot(e, e);
+            double t = ee > 0 ? -dot(w[c], e) / ee : 0;
+            t = t < 0 ? 0 : (t > 1 ? 1 : t);
+            const double dist = length(w[c] + t * e);
+            if (dist < best) {
+                best = dist;
+                f.l[c] = 1 - t, f.l[(c + 1) % 3] = t, f.l[(c + 2) % 3] = 0;
+            }
+        }
+        if (best > f.d) f.d = best;
+    }
+
+    // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
+    // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
+    //
+    // It starts from C's extreme points along the six axes, which also set the working scale:
+    // the largest of them is brought near 1 (a power of two, exact). One support point alone can
+    // lie far inside C's extent (a triangle's corner 1e-300 from the origin scaled the rest of a
+    // triangle 4 wide to overflow; found by fuzzing).
+    Termination build_tetrahedron(CoreDepth& out) {
+        Vertex ext[6];
+        double big = 0;
+        for (int i = 0; i < 6; ++i) {
+            Vec3 d{};
+            (i < 2 ? d.x : (i < 4 ? d.y : d.z)) = i % 2 ? -1 : 1;
+            ext[i].w = pair_(d, ext[i].a, ext[i].b);
+            ++calls_;
+            big = std::fmax(big, std::fmax(max_abs(ext[i].a), max_abs(ext[i].b)));
+        }
+        const double sc = pair_scale({big, 0, 0}, {});
+        if (sc != 1) {
+            double unused = 0;
+            Vec3 a{}, b{};
+            adopt_scale(pair_, sc, a, b, unused);
+            for (Vertex& x : ext) x.a = sc * x.a, x.b = sc * x.b, x.w = x.a - x.b;
+        }
+        for (const Vertex& x : ext) size_ = std::fmax(size_, max_abs(x.w));
+        out.n = normalized_or(hint_, {1, 0, 0});
+        // The two extremes farthest apart.
+        int i0 = 0, i1 = 1;
+        for (int i = 0; i < 6; ++i)
+            for (int j = i + 1; j < 6; ++j)
+                if (length(ext[j].w - ext[i].w) > length(ext[i1].w - ext[i0].w)) i0 = i, i1 = j;
+        const Vec3 e = ext[i1].w - ext[i0].w;
+        if (!(length(e) > floor())) {  // C is a point: touching
+            flat_ = 0;
+            return Termination::NearContact;
+        }
+        add_vertex(ext[i0]);
+        add_vertex(ext[i1]);
+        const Vec3 o = ext[i0].w;
+        // The extreme farthest from their line, else C's supports across it.
+        const Vec3 eu = normalized_or(e, {1, 0, 0});
+        auto across = [&](const Vertex& x) {
+            const Vec3 off = x.w - o;
+            return length(off - dot(off, eu) * eu);
+        };
+        Vertex far = ext[0];
+        for (const Vertex& x : ext)
+            if (across(x) > across(far)) far = x;
+        const Vec3 p = normalized_or(cross(eu, std::fabs(eu.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}), {0, 0, 1});
+        if (!(across(far) > thin())) {
+            const Vec3 q = cross(eu, p);
+            for (const Vec3& d : {p, -p, q, -q}) {
+                Vertex x;
+                support(d, x);
+                if (across(x) > across(far)) far = x;
+            }
+        }
+        if (!(across(far) > thin())) {  // C is a segment: the normal across it nearest the hint
+            // Orthogonalised twice (one pass leaves rounding along eu), and only a hint well off
+            // the segment's line counts: a hint along it leaves rounding noise, whose direction is
+            // anything (a ball centred on a capsule's segment got an axis along the capsule).
+            Vec3 off = hint_ - dot(hint_, eu) * eu;
+            off = off - dot(off, eu) * eu;
+            out.n = length(off) > 1e-6 * length(hint_) ? normalized_or(off, p) : p;
+            flat_ = 1;
+            return Termination::NearContact;
+        }
+        add_vertex(far);
+        // The extreme farthest from their plane, else C's supports along its normal.
+        const Vec3 m = normalized_or(cross(verts_[1].w - o, verts_[2].w - o), {0, 0, 1});
+        Vertex apex = ext[0];
+        for (const Vertex& x : ext)
+            if (std::fabs(dot(m, x.w - o)) > std::fabs(dot(m, apex.w - o))) apex = x;
+        if (!(std::fabs(dot(m, apex.w - o)) > thin())) {
+            for (const Vec3& d : {m, -m}) {
+                Vertex x;
+                support(d, x);
+                if (std::fabs(dot(m, x.w - o)) > std::fabs(dot(m, apex.w - o))) apex = x;
+            }
+        }
+        if (!(std::fabs(dot(m, apex.w - o)) > thin())) {  // C is flat: its plane's normal, toward the hint
+            out.n = dot(m, hint_) < 0 ? -m : m;
+            flat_ = 2;
+            return Termination::NearContact;
+        }
+        add_vertex(apex);
+        // The four faces, each wound so that the fourth point lies behind it.
+        const int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
+        for (const auto& t : tri) {
+            Face f;
+            bool ok = make_face(t[0], t[1], t[2], f);
+            if (ok && dot(f.n, verts_[t[3]].w) > f.off) ok = make_face(t[0], t[2], t[1], f);
+            if (!ok) {  // a sliver tetrahedron: taken as flat, across the first three points' plane
+                out.n = dot(m, hint_) < 0 ? -m : m;
+                flat_ = 2;
+                return Termination::NoProgress;
+            }
+            put(nf_++, f);
+        }
+        // Each edge's neighbour: the face holding the reverse edge. Faces wound inconsistently
+        // (rounding on a tetrahedron too thin to orient) have none: taken as flat, as above.
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) {
+                const int a = faces_[i].v[k], b = faces_[i].v[(k + 1) % 3];
+                int across = -1;
+                for (int j = 0; j < 4; ++j)
+                    if (j != i && edge_index(faces_[j], b, a) >= 0) across = j;
+                if (across < 0) {
+                    out.n = dot(m, hint_) < 0 ? -m : m;
+                    flat_ = 2;
+                    return Termination::NoProgress;
+                }
+                faces_[i].adj[k] = int16_t(across);
+            }
+        interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
+        return Termination::None;
+    }
+
+    // Adds x: removes the faces that see it and closes the hole with faces from the horizon to x.
+    // Nothing changes (false) when rounding makes the hole other than a single cycle of edges,
+    // or a new face a sliver or facing inward.
+    //
+    // Faces x lies on within rounding are where that happens (the hole pinched at a vertex whose
+    // faces are nearly coplanar): so the faces are taken as seeing x beyond a margin of a few
+    // roundings, and when that fails, with the faces x lies on included, then stricter.
+    bool expand(const Vertex& x, int seed) {
+        for (double margin : {1.0, -1.0, 16.0, -16.0})
+            if (expand(x, seed, margin * floor())) return true;
+        return false;
+    }
+    // The visible faces are the seed's connected region of faces that see x (a walk over the
+    // faces' neighbours, as in van den Bergen's and Bullet's expansions): it costs the region and
+    // its rim, not every face. Its rim is the horizon.
+    bool expand(const Vertex& x, int seed, double margin) {
+        if (!(dot(plane_[seed].n, x.w) - plane_[seed].off > margin)) return false;
+        ++epoch_;
+        int vis[kMaxFaces];  // the faces that see x
+        int n_visible = 0;
+        int stack[kMaxFaces];
+        int top = 0;
+        int from[kMaxVertices], to[kMaxVertices], outside[kMaxVertices];
+        int nh = 0;
+        mark_[seed] = epoch_ * 2 + 1;
+        stack[top++] = seed;
+        while (top > 0) {
+            const int fi = stack[--top];
+            vis[n_visible++] = fi;
+            const Face& f = faces_[fi];
+            for (int k = 0; k < 3; ++k) {
+                const int g = f.adj[k];
+                if (mark_[g] < epoch_ * 2) {  // not tested in this expansion
+                    const bool sees = dot(plane_[g].n, x.w) - plane_[g].off > margin;
+                    mark_[g] = epoch_ * 2 + (sees ? 1 : 0);
+                    if (sees) {
+                        stack[top++] = g;
+                        continue;
+                    }
+                }
+                if (mark_[g] == epoch_ * 2 + 1) continue;  // shared with another visible face
+                if (nh == kMaxVertices) return false;
+                from[nh] = f.v[k], to[nh] = f.v[(k + 1) % 3], outside[nh] = g, ++nh;
+            }
+        }
+        // One cycle: every vertex starts at most one edge, and following them visits them all.
+        if (nh < 3 || n_free_ + n_visible + (kMaxFaces - nf_) < nh) return false;
+        int start_of[kMaxVertices], end_of[kMaxVertices];  // the horizon edge leaving / reaching a vertex
+        for (int i = 0; i < nh; ++i) start_of[from[i]] = -1, end_of[to[i]] = -1;
+        for (int i = 0; i < nh; ++i) {
+            if (start_of[from[i]] != -1 || end_of[to[i]] != -1) return false;
+            start_of[from[i]] = i, end_of[to[i]] = i;
+        }
+        for (int i = 0; i < nh; ++i)
+            if (!on_horizon(to[i], from, nh)) return false;
+        int at = 0, steps = 0;
+        do {
+            at = start_of[to[at]];
+            ++steps;
+        } while (at != 0 && steps <= nh);
+        if (at != 0 || steps != nh) return false;
+        // The new faces, checked before anything changes.
+        const int xi = nv_;
+        verts_[xi] = x;
+        Slots<Face, kMaxVertices> fresh;
+        for (int i = 0; i < nh; ++i) {
+            if (!make_face(from[i], to[i], xi, fresh[i])) return false;
+            if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
+        }
+        ++nv_;
+        // The new faces take the visible faces' slots, then freed ones, then the end. A visible
+        // region with vertices inside it (they leave the polytope) has fewer rim edges than faces
+        // (n + 2 - 2 i for n faces around i inner vertices): its slots left over are freed.
+        int slot[kMaxVertices];
+        for (int i = 0; i < nh; ++i) slot[i] = i < n_visible ? vis[i] : (n_free_ > 0 ? free_[--n_free_] : nf_++);
+        for (int h = nh; h < n_visible; ++h) {
+            free_[n_free_++] = vis[h];
+            key_[vis[h]] = INFINITY;
+            faces_[vis[h]].resolved = true;
+        }
+        for (int i = 0; i < nh; ++i) {
+            Face& f = fresh[i];
+            f.adj[0] = int16_t(outside[i]);
+            f.adj[1] = int16_t(slot[start_of[to[i]]]);  // across to -> x: the new face leaving `to`
+            f.adj[2] = int16_t(slot[end_of[from[i]]]);  // across x -> from: the one reaching `from`
+            Face& g = faces_[outside[i]];
+            g.adj[edge_index(g, to[i], from[i])] = int16_t(slot[i]);
+        }
+        for (int i = 0; i < nh; ++i) put(slot[i], fresh[i]);
+        return true;
+    }
+    static bool on_horizon(int v, const int* from, int nh) {
+        for (int i = 0; i < nh; ++i)
+            if (from[i] == v) return true;
+        return false;
+    }
+    // The index k of the edge a -> b of face f (v[k] == a, v[k + 1] == b), or -1.
+    static int edge_index(const Face& f, int a, int b) {
+        for (int k = 0; k < 3; ++k)
+            if (f.v[k] == a && f.v[(k + 1) % 3] == b) return k;
+        return -1;
+    }
+
+    void put(int i, const Face& f) {
+        mark_[i] = 0;
+        faces_[i] = f;
+        key_[i] = f.d;
+        plane_[i] = {f.n, f.off};
+    }
+
+    // The nearest face's nearest point to the origin, as a combination of its corners.
+    // A converged face (x: C's support point along its normal). When the origin's nearest point on
+    // it lies on an edge, the axis reported is the direction to that point, not the face's normal,
+    // and the stopping rules tested the normal: the axis must then be checked by a support call
+    // of its own. Should C reach farther along it than the depth (a cone 1e4 times wider than
+    // thick, in one argument order, by 1.2 % of the depth: found by fuzzing), the better of the
+    // two directions is reported with its own support value (each is an upper bound of the depth,
+    // exact along its axis).
+    CoreDepth finish_converged(const Face& f, const Vertex& x, double tolerance, Termination t, CoreDepth& out) {
+        if (!f.edge || !(f.d > 0)) return finish(f, t, out);
+        const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
+        const Vec3 qn = normalized_or(q, f.n);
+        Vertex y;
+        const double hq = dot(qn, support(qn, y));
+        if (hq - f.d <= std::fmax(floor(), tolerance * hq)) return finish(f, t, out);
+        const double hn = dot(f.n, x.w);
+        const bool normal = hn < hq;
+        const Vertex& v = normal ? x : y;
+        out.n = normal ? f.n : qn;
+        out.depth = normal ? hn : hq;
+        out.point_a = v.a;
+        out.point_b = v.a - out.depth * out.n;
+        out.termination = t;
+        return finish(out);
+    }
+    CoreDepth finish(const Face& f, Termination t, CoreDepth& out) {
+        if (f.d < 0 && dot(upper_n_, upper_n_) > 0) {
+            // Stopped before the polytope held the origin (rounding, or the guard): the smallest
+            // support value seen, an upper bound (B moved by it along upper_n_ no longer overlaps).
+            const double u = dot(upper_n_, upper_x_.w);
+            out.depth = u > 0 ? u : 0;
+            out.n = upper_n_;
+            out.point_a = upper_x_.a;
+            out.point_b = upper_x_.a - out.depth * upper_n_;
+            out.termination = t;
+            return finish(out);
+        }
+        out.point_a = f.l[0] * verts_[f.v[0]].a + f.l[1] * verts_[f.v[1]].a + f.l[2] * verts_[f.v[2]].a;
+        out.point_b = f.l[0] * verts_[f.v[0]].b + f.l[1] * verts_[f.v[1]].b + f.l[2] * verts_[f.v[2]].b;
+        out.depth = f.d > 0 ? f.d : 0;
+        out.n = f.n;
+        // The origin still beyond the polytope (the guard, with no support value seen): depth 0 at
+        // one point of the nearest face, whose two parts stand for the common point.
+        if (!(f.d > 0)) out.point_b = out.point_a;
+        // Nearest on an edge: the direction to that point, so that a - b = depth n holds.
+        const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
+        if (f.edge) out.n = normalized_or(q, f.n);
+        out.termination = t;
+        return finish(out);
+    }
+    // Back to the caller's scale. A flat C has depth 0; its deepest points are a common point of
+    // the cores, which the caller has from GJK (flat set).
+    CoreDepth finish(CoreDepth& out) {
+        if (flat_ >= 0) {
+            out.depth = 0;
+            out.flat = true;
+        }
+        const double inv = 1 / pair_.scale;
+        out.depth *= inv;
+        out.point_a = inv * out.point_a;
+        out.point_b = inv * out.point_b;
+        out.iterations = calls_;
+        return out;
+    }
+
+    Pair pair_;
+    Vec3 hint_;
+    uint32_t budget_;
+    uint32_t calls_ = 0;
+    double size_ = 0;
+    int flat_ = -1;  // the dimension of a flat C (0, 1, 2), or -1
+    Vec3 interior_;
+    Vec3 upper_n_;
+    Vertex upper_x_;
+    Slots<Vertex, kMaxVertices> verts_;
+    // Face i, its ranking distance (faces_[i].d) and its plane, kept apart so that the scans
+    // over every face read them contiguously.
+    Slots<Face, kMaxFaces> faces_;
+    Slots<double, kMaxFaces> key_;
+    Slots<Plane, kMaxFaces> plane_;
+    // mark_[i] == 2 epoch_ + 1: face i sees the point being added; 2 epoch_: it does not.
+    Slots<uint32_t, kMaxFaces> mark_;
+    uint32_t epoch_ = 0;
+    int free_[kMaxFaces];  // slots of faces that left the polytope (key_ INFINITY, never reached)
+    int n_free_ = 0;
+    int nv_ = 0, nf_ = 0;
+};
+
+}  // namespace epa_detail
+}  // namespace kairos
