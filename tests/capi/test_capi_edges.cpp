@@ -1216,3 +1216,49 @@ TEST(GjkEdges, NeedleAcrossAThinSlabGivesACommonPointNearBoth) {
     EXPECT_GE(intersecting, cases * 9 / 10);
     kairos_shape_release(slab);
 }
+
+// A ball whose centre lies a small gap from a flat ellipse (a sphere mapped by a singular-looking
+// diagonal, 1e-19 thick), the centre over the ellipse: the signed distance is the gap less the
+// ball's radius, in both orders. The cores' GJK axis came out 3e-7 off the ellipse's normal, and
+// along it the ellipse (50 wide) showed a gap 13 % short, which was taken as the depth in one
+// order (found by fuzz_queries). Truth: the gap is the centre's height over the ellipse's plane.
+TEST(GjkEdges, BallOverAFlatEllipseGivesTheGapLessTheRadius) {
+    const uint64_t seed = 1127;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit01(0, 1);
+    kairos_shape *ball = nullptr, *sphere = nullptr;
+    ASSERT_EQ(kairos_shape_sphere(1, &ball), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_sphere(2.7294117647058824, &sphere), KAIROS_OK);
+    const double linear[9] = {1, 0, 0, 0, -1.2148470283054856e-19, 0, 0, 0, 18.423590447852295};
+    kairos_shape* ellipse = nullptr;
+    ASSERT_EQ(kairos_shape_transformed(sphere, linear, {0, 0, 0}, &ellipse), KAIROS_OK);
+    int cases = 0;
+    double worst = 0;
+    for (int i = 0; i < 300; ++i) {
+        // The finding first; then gaps 1e-7 .. 1e-1 and centres anywhere over the ellipse's middle.
+        const double gap = std::pow(10.0, -7 + 6 * unit01(rng));
+        const double u = 2.7 * (2 * unit01(rng) - 1) * 0.7;
+        const double w = 50 * (2 * unit01(rng) - 1) * 0.7;
+        const kairos_pose ep{{-3.7187457084000917, -3.9998779278248264, -4}, {0, 0, 0, 1}};
+        kairos_pose bp{{ep.position.x - u, ep.position.y - gap, ep.position.z + w},
+                       {0.40052095632268653, 0.52868507839187229, 0.52918571949370496, 0.52918571949370496}};
+        if (i == 0) bp.position = {-4, -4, -4};  // the finding's own pose
+        // The centre's height over the plane as placed (exact up to the placement's rounding).
+        const double truth = (ep.position.y - bp.position.y) - 1;
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " case " << i << " gap " << gap);
+        for (int order = 0; order < 2; ++order) {
+            kairos_distance_result r{};
+            ASSERT_EQ(order == 0 ? kairos_signed_distance(ball, &bp, ellipse, &ep, nullptr, &r)
+                                 : kairos_signed_distance(ellipse, &ep, ball, &bp, nullptr, &r),
+                      KAIROS_OK);
+            worst = std::max(worst, std::fabs(r.distance - truth));
+            EXPECT_NEAR(r.distance, truth, 1e-9 * 60) << "order " << order << " termination " << r.termination;
+            EXPECT_NEAR(std::fabs(r.axis.y), 1, 1e-9) << "order " << order;
+            ++cases;
+        }
+    }
+    std::printf("ball over a flat ellipse: %d signed distances, worst error %.3g\n", cases, worst);
+    kairos_shape_release(ellipse);
+    kairos_shape_release(sphere);
+    kairos_shape_release(ball);
+}
