@@ -112,16 +112,12 @@ struct SingleSupport {
     }
 };
 
-Vec3 abs_max(Vec3 a, Vec3 b) {
-    return {std::fmax(std::fabs(a.x), std::fabs(b.x)), std::fmax(std::fabs(a.y), std::fabs(b.y)),
-            std::fmax(std::fabs(a.z), std::fabs(b.z))};
-}
-
-// The cast's scale (a power of two, as pair_scale): from the first support points and the ray's
+// The cast's scale (a power of two, as first_scale): from the first support points and the ray's
 // start, lowered while the motion r would leave 2^400 (its products with v, which is about 1 at
 // that scale, stay finite).
-double cast_scale(Vec3 a, Vec3 b, Vec3 x, Vec3 r) {
-    double sc = pair_scale(a, abs_max(b, x));
+template <class Pair>
+double cast_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x, Vec3 r) {
+    double sc = first_scale(pair, a, b, x);
     const double rmax = max_abs(r);
     while (sc > 1 && !(rmax * sc <= 0x1p400)) sc = std::fmax(1.0, sc * 0x1p-100);
     return sc;
@@ -221,7 +217,7 @@ public:
 
 private:
     void adopt_first_scale(Vec3& a, Vec3& b, Vec3& p) {
-        const double sc = cast_scale(a, b, x_, r_);
+        const double sc = cast_scale(sup_, a, b, x_, r_);
         if (sc == 1) return;
         adopt_scale(sup_, sc, a, b, margin_);
         p = a - b;
@@ -563,10 +559,11 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     out.normal = pose_a.rotation * n;
     out.point = pose_a.apply(0.5 * (pa + pb));
     // Overlapping at the start (depth > 0): the minimum translation's axis and the deepest points'
-    // midpoint (touching keeps the rule above, opposing the relative motion).
+    // midpoint (touching keeps the rule above, opposing the relative motion; so does a non-finite
+    // answer, never expected, so that a world's contacts stay finite whatever the expansion gives).
     if (out.toi == 0) {
         const DistanceResult sd = signed_distance(a, pose_a, b, pose_b, tolerance, max_iterations);
-        if (sd.distance < 0) {
+        if (sd.distance < 0 && is_finite(sd.axis) && is_finite(sd.point_a + sd.point_b)) {
             out.normal = sd.axis;
             out.point = 0.5 * (sd.point_a + sd.point_b);
         }

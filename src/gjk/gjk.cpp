@@ -100,7 +100,7 @@ constexpr double settle_floor =
 // scaling.
 template <class Pair>
 inline void set_scale(Pair& pair, Vec3& a, Vec3& b, Vec3& w, double& margin, double& margin_sq) {
-    const double sc = pair_scale(a, b);
+    const double sc = first_scale(pair, a, b);
     if (sc == 1) return;
     adopt_scale(pair, sc, a, b, margin);
     w = a - b;
@@ -133,7 +133,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     // First direction: B lies roughly along t from A, so the closest points are near A's support
     // toward t and B's support toward -t; v is a guess at a point of A - B (about -t).
     Vec3 v = -pair.t;
-    if (!(dot(v, v) > 0)) v = {1, 0, 0};
+    if (!(dot(v, v) > 0)) v = normalized_or(v, {1, 0, 0});  // t may be too small to square
     double vv = 0;  // ||v||^2 of the simplex's point, once there is one
     double margin_sq = margin * margin;
     // Squared lower bound on the cores' distance: max over iterations of (v.w)^2 / ||v||^2 with

@@ -106,6 +106,28 @@ inline double pair_scale(Vec3 a, Vec3 b) {
     return std::ldexp(1.0, e);
 }
 
+// The scale for a loop whose first support points are a and b, and which also works with the
+// point x (the cast's ray start; else 0). A scale that enlarges is checked against the pair's
+// extent first: one support point can lie far inside it (a needle 1e15 long with a vertex 1e-300
+// from its origin, met first, took its far end to infinity; found by fuzzing). The supports along
+// the six axes bound every support point's coordinates, so their largest sets the scale then.
+// Only pairs whose first points all lie within 2^-100 of the origin pay the six calls.
+template <class Pair>
+double first_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x = {}) {
+    auto mx = [](double p, double q) { return q > p ? q : p; };
+    const double near = mx(max_abs(a), mx(max_abs(b), max_abs(x)));
+    const double sc = pair_scale({near, 0, 0}, {});
+    if (!(sc > 1)) return sc;
+    double big = near;
+    for (int i = 0; i < 6; ++i) {
+        Vec3 d{}, pa, pb;
+        d[i / 2] = i % 2 ? -1.0 : 1.0;
+        pair(d, pa, pb);
+        big = mx(big, mx(max_abs(pa), max_abs(pb)));
+    }
+    return pair_scale({big, 0, 0}, {});
+}
+
 // Brings a loop to the scale `sc` after its first support call: the support functor scales every
 // later point itself; the first points and the margin are scaled here (exact: a power of two).
 template <class Support>

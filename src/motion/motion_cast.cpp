@@ -229,7 +229,7 @@ private:
             // normal opposes the relative velocity of the contact point (B's relative to A's), else
             // points from A's origin toward B's.
             const DistanceResult sd = signed_distance(a_, pa_, b_, pb_, tolerance_, max_iterations_);
-            if (sd.distance < 0) {
+            if (sd.distance < 0 && is_finite(sd.axis) && is_finite(sd.point_a + sd.point_b)) {
                 r.normal = sd.axis;
                 r.point = 0.5 * (sd.point_a + sd.point_b);
             } else {

@@ -1262,3 +1262,113 @@ TEST(GjkEdges, BallOverAFlatEllipseGivesTheGapLessTheRadius) {
     kairos_shape_release(sphere);
     kairos_shape_release(ball);
 }
+
+// A needle hull 1e9 .. 1e15 long whose other vertices lie within 1e-307 .. 1e-300 of its origin,
+// and a unit ball centred there, offset by 1e-320 .. 1e-300. When the first support points are a
+// near vertex and the ball's centre, GJK took its working scale from them (up to 2^1000) and the
+// far vertex, met next, became infinite. The signed distance then failed ("no finite result") in
+// one order, and a world reported a contact at (inf, nan, nan) (fuzz_world). The truth: the needle
+// passes through the ball's centre, so the depth is the radius, 1 (to the needle's thickness), and
+// the distance 0.
+TEST(GjkEdges, ANearVertexMetFirstDoesNotScaleTheFarOneToInfinity) {
+    const uint64_t seed = 1128;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit01(0, 1);
+    std::normal_distribution<double> normal(0, 1);
+    auto random_unit = [&] {
+        V d{};
+        do d = {normal(rng), normal(rng), normal(rng)};
+        while (!(norm(d) > 1e-3));
+        return unit(d);
+    };
+    kairos_shape* ball = nullptr;
+    ASSERT_EQ(kairos_shape_sphere(1, &ball), KAIROS_OK);
+    const kairos_pose origin{{0, 0, 0}, {0, 0, 0, 1}};
+    auto finite = [](kairos_vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
+    int cases = 0, away = 0;
+    for (int i = 0; i < 200; ++i) {
+        std::vector<kairos_vec3> points;
+        V u{1, 0, 0}, off{0x1p-1022, 0, 0};
+        if (i == 0) {  // the finding: 13 points, the ball at the smallest normal double along +x
+            points = {{0x1.c6bf52634p+49, 0x1.14b00c28e01aep-997, 0x1.957e438a83b47p-1012},
+                      {0x1.35ad3e0257aaep-998, -0x1.fe674547bc966p-998, -0x1.7600a676bbcdcp-1012},
+                      {0x1.1fda542948b7ep-997, 0x1.c459465996efp-998, 0x1.4b73d41dd4e7ap-1012},
+                      {0x1.8b1b80be22035p-998, -0x1.6ae51547e70edp-998, -0x1.09eb0e0fdb075p-1012},
+                      {0x1.67b9c897101dep-998, 0x1.644f4fc6a18dp-999, 0x1.05142669ef156p-1013},
+                      {0x1.b7d1379132ce3p-1000, -0x1.d6653d91247c9p-1001, -0x1.58b1228561d82p-1015},
+                      {0x1.16674621853cdp-997, 0x1.0ce14eabec148p-997, 0x1.8a0f450219db2p-1012},
+                      {0x1.8a8ca6e531c29p-1000, -0x1.d9b3b8d44454bp-998, -0x1.5b1e4b4887b31p-1012},
+                      {0x1.34e24c73baa39p-998, 0x1.f7b568fef9b4cp-999, 0x1.7119646adac6bp-1013},
+                      {0x1.8329f17b4b41cp-998, 0x1.52e0c517e7275p-997, 0x1.f0a4f9840d7a7p-1012},
+                      {0x1.43393c438bcdp-998, -0x1.e346d0ec529bbp-998, -0x1.62218b184eb4cp-1012},
+                      {0x1.7293ab482b3f8p-998, -0x1.45c94c573275dp-999, -0x1.dd7d5f090c277p-1014},
+                      {-0x1.1805730fd9dbbp-1002, 0x1.02afa2b09a2ep-999, 0x1.7b266ad508b7dp-1014}};
+        } else {
+            u = random_unit();
+            const double length = std::pow(10.0, 9 + 6 * unit01(rng));
+            const double near = std::pow(10.0, -307 + 7 * unit01(rng));
+            points.push_back(kv(length * u));
+            const int n = 3 + static_cast<int>(unit01(rng) * 10);
+            for (int k = 0; k < n; ++k) {  // behind the origin: the enclosing simplex needs the far vertex
+                const V d = random_unit();
+                points.push_back(kv((near * (0.1 + unit01(rng))) * (dot(d, u) < 0 ? d : -d)));
+            }
+            off = std::pow(10.0, -320 + 20 * unit01(rng)) * random_unit();
+        }
+        away += dot(off, u) < 0;
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " case " << i);
+        kairos_shape* needle = nullptr;
+        ASSERT_EQ(kairos_shape_convex_hull(points.data(), points.size(), &needle), KAIROS_OK);
+        const kairos_pose bp{kv(off), {0, 0, 0, 1}};
+        for (int order = 0; order < 2; ++order) {
+            const kairos_shape* a = order == 0 ? needle : ball;
+            const kairos_shape* b = order == 0 ? ball : needle;
+            const kairos_pose& pa = order == 0 ? origin : bp;
+            const kairos_pose& pb = order == 0 ? bp : origin;
+            kairos_distance_result r{};
+            ASSERT_EQ(kairos_signed_distance(a, &pa, b, &pb, nullptr, &r), KAIROS_OK)
+                << "order " << order << ": " << kairos_last_error();
+            EXPECT_NEAR(r.distance, -1, 1e-12) << "order " << order;
+            EXPECT_NEAR(norm(fromk(r.axis)), 1, 1e-12) << "order " << order;
+            ASSERT_TRUE(finite(r.point_a) && finite(r.point_b)) << "order " << order;
+            EXPECT_LE(norm(fromk(r.point_b) - fromk(r.point_a) - r.distance * fromk(r.axis)), 1e-12) << "order " << order;
+            kairos_distance_result d{};
+            ASSERT_EQ(kairos_distance(a, &pa, b, &pb, nullptr, &d), KAIROS_OK) << "order " << order;
+            EXPECT_EQ(d.distance, 0) << "order " << order;
+            EXPECT_TRUE(finite(d.point_a) && finite(d.point_b) && finite(d.axis)) << "order " << order;
+            kairos_cast_result c{};
+            ASSERT_EQ(kairos_shape_cast(a, &pa, {0, 0, 0}, b, &pb, kv(-1 * u), nullptr, &c), KAIROS_OK)
+                << "order " << order << ": " << kairos_last_error();
+            EXPECT_EQ(c.hit, 1) << "order " << order;
+            EXPECT_EQ(c.toi, 0) << "order " << order;
+            EXPECT_TRUE(finite(c.point) && finite(c.normal)) << "order " << order;
+            int32_t hit = -1;
+            kairos_vec3 cache{0, 0, 0};
+            ASSERT_EQ(kairos_intersect(a, &pa, b, &pb, &cache, &hit), KAIROS_OK) << "order " << order;
+            EXPECT_EQ(hit, 1) << "order " << order;
+            ++cases;
+        }
+        // The world's contact of the pair overlapping at the start of a step.
+        kairos_world* w = nullptr;
+        ASSERT_EQ(kairos_world_create(nullptr, &w), KAIROS_OK);
+        kairos_object_id ids[2];
+        ASSERT_EQ(kairos_world_add(w, needle, &origin, 1, &ids[0]), KAIROS_OK);
+        ASSERT_EQ(kairos_world_add(w, ball, &bp, 2, &ids[1]), KAIROS_OK);
+        ASSERT_EQ(kairos_world_step(w), KAIROS_OK);
+        const kairos_contact* contacts = nullptr;
+        size_t count = 0;
+        ASSERT_EQ(kairos_world_contacts(w, &contacts, &count), KAIROS_OK);
+        ASSERT_EQ(count, 1u);
+        EXPECT_EQ(contacts[0].toi, 0);
+        EXPECT_TRUE(finite(contacts[0].point) && finite(contacts[0].normal));
+        EXPECT_NEAR(norm(fromk(contacts[0].normal)), 1, 1e-12);
+        kairos_world_destroy(w);
+        kairos_shape_release(needle);
+    }
+    // About half the offsets point away from the needle, where the near vertex comes first.
+    EXPECT_GE(away, 60) << "seed " << seed;
+    EXPECT_LE(away, 140) << "seed " << seed;
+    std::printf("needle with a near vertex met first: %d query pairs, %d of 200 offsets away from the needle\n", cases,
+                away);
+    kairos_shape_release(ball);
+}
