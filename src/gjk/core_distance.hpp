@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "gjk/gjk.hpp"
 #include "gjk/support_kernels.hpp"
 #include "gjk/termination.hpp"
 #include "math/math.hpp"
@@ -22,8 +23,10 @@ struct CoreDistance {
     Termination termination = Termination::None;
 };
 
-// The closed forms for the pairs that have them, else GJK on the cores with no margin.
+// The closed forms for the pairs that have them, else GJK on the cores with no margin (held, may
+// be null: its final tetrahedron when the cores overlap).
 CoreDistance core_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
-                           const Transform& pose_b, double tolerance, uint32_t max_iterations);
+                           const Transform& pose_b, double tolerance, uint32_t max_iterations,
+                           HeldTetrahedron* held = nullptr);
 
 }  // namespace kairos

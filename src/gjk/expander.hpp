@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "gjk/gjk.hpp"
 #include "gjk/support_kernels.hpp"
 #include "gjk/termination.hpp"
 #include "math/math.hpp"
@@ -72,7 +73,9 @@ struct CoreDepth {
 template <class Pair>
 class Expander {
 public:
-    Expander(Pair pair, Vec3 hint, uint32_t budget) : pair_(pair), hint_(hint), budget_(budget) {}
+    // seed (may be null): GJK's tetrahedron, tried as the start before C's axis extremes.
+    Expander(Pair pair, Vec3 hint, uint32_t budget, const HeldTetrahedron* seed = nullptr)
+        : pair_(pair), hint_(hint), budget_(budget), seed_(seed) {}
 
     CoreDepth run(double tolerance) {
         CoreDepth out;
@@ -200,6 +203,8 @@ private:
     // lie far inside C's extent (a triangle's corner 1e-300 from the origin scaled the rest of a
     // triangle 4 wide to overflow; found by fuzzing).
     Termination build_tetrahedron(CoreDepth& out) {
+        out.n = normalized_or(hint_, {1, 0, 0});
+        if (seed_ != nullptr && seed_->valid && from_seed()) return Termination::None;
         Vertex ext[6];
         double big = 0;
         for (int i = 0; i < 6; ++i) {
@@ -217,7 +222,6 @@ private:
             for (Vertex& x : ext) x.a = sc * x.a, x.b = sc * x.b, x.w = x.a - x.b;
         }
         for (const Vertex& x : ext) size_ = std::fmax(size_, max_abs(x.w));
-        out.n = normalized_or(hint_, {1, 0, 0});
         // The two extremes farthest apart.
         int i0 = 0, i1 = 1;
         for (int i = 0; i < 6; ++i)
@@ -278,36 +282,68 @@ private:
             return Termination::NearContact;
         }
         add_vertex(apex);
-        // The four faces, each wound so that the fourth point lies behind it.
+        if (!close_tetrahedron(0)) {  // a sliver: taken as flat, across the first three points' plane
+            out.n = dot(m, hint_) < 0 ? -m : m;
+            flat_ = 2;
+            return Termination::NoProgress;
+        }
+        return Termination::None;
+    }
+
+    // GJK's tetrahedron as the start, as van den Bergen's and Bullet's expansions do: it saves
+    // the six axis supports. Taken only at a scale that keeps or shrinks its points (an enlarging
+    // one needs the axes' bound on C, see first_scale) and when each corner stands clear of the
+    // opposite face by 1e-6 of its size; else C's axis extremes start (false, nothing kept).
+    bool from_seed() {
+        double big = 0;
+        for (int i = 0; i < 4; ++i) big = std::fmax(big, std::fmax(max_abs(seed_->a[i]), max_abs(seed_->b[i])));
+        const double sc = pair_scale({big, 0, 0}, {});
+        if (!(sc <= 1)) return false;
+        for (int i = 0; i < 4; ++i) {
+            Vertex x;
+            x.a = sc * seed_->a[i], x.b = sc * seed_->b[i], x.w = x.a - x.b;
+            size_ = std::fmax(size_, max_abs(x.w));
+            add_vertex(x);
+        }
+        if (!(size_ > 0) || !close_tetrahedron(1e-6 * size_)) {
+            nv_ = nf_ = 0;
+            size_ = 0;
+            return false;
+        }
+        if (sc != 1) {
+            double unused = 0;
+            Vec3 a{}, b{};
+            adopt_scale(pair_, sc, a, b, unused);
+        }
+        return true;
+    }
+
+    // The four faces of the tetrahedron verts_[0..3], each wound so that the fourth point lies
+    // behind it (by more than min_height when > 0), and their neighbours. False for a sliver
+    // (a face without a normal, or faces wound inconsistently by rounding on a tetrahedron too
+    // thin to orient).
+    bool close_tetrahedron(double min_height) {
         const int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
         for (const auto& t : tri) {
             Face f;
             bool ok = make_face(t[0], t[1], t[2], f);
             if (ok && dot(f.n, verts_[t[3]].w) > f.off) ok = make_face(t[0], t[2], t[1], f);
-            if (!ok) {  // a sliver tetrahedron: taken as flat, across the first three points' plane
-                out.n = dot(m, hint_) < 0 ? -m : m;
-                flat_ = 2;
-                return Termination::NoProgress;
-            }
+            if (ok && min_height > 0) ok = f.off - dot(f.n, verts_[t[3]].w) > min_height;
+            if (!ok) return false;
             put(nf_++, f);
         }
-        // Each edge's neighbour: the face holding the reverse edge. Faces wound inconsistently
-        // (rounding on a tetrahedron too thin to orient) have none: taken as flat, as above.
+        // Each edge's neighbour: the face holding the reverse edge.
         for (int i = 0; i < 4; ++i)
             for (int k = 0; k < 3; ++k) {
                 const int a = faces_[i].v[k], b = faces_[i].v[(k + 1) % 3];
                 int across = -1;
                 for (int j = 0; j < 4; ++j)
                     if (j != i && edge_index(faces_[j], b, a) >= 0) across = j;
-                if (across < 0) {
-                    out.n = dot(m, hint_) < 0 ? -m : m;
-                    flat_ = 2;
-                    return Termination::NoProgress;
-                }
+                if (across < 0) return false;
                 faces_[i].adj[k] = int16_t(across);
             }
         interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
-        return Termination::None;
+        return true;
     }
 
     // Adds x: removes the faces that see it and closes the hole with faces from the horizon to x.
@@ -488,6 +524,7 @@ private:
     Pair pair_;
     Vec3 hint_;
     uint32_t budget_;
+    const HeldTetrahedron* seed_;
     uint32_t calls_ = 0;
     double size_ = 0;
     int flat_ = -1;  // the dimension of a flat C (0, 1, 2), or -1

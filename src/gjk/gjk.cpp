@@ -126,7 +126,8 @@ inline bool touching(double nv, double max_norm_sq, double margin_sq) {
 }
 
 template <class Pair>
-LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations) {
+LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations,
+                            HeldTetrahedron* held = nullptr) {
     // pair by value: its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;  // coordinates once, at the end
@@ -309,6 +310,10 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     s.closest_points(out.point_a, out.point_b);
     out.point_a = inv * out.point_a;
     out.point_b = inv * out.point_b;
+    if (held != nullptr && intersecting && s.bits == 15u) {
+        for (int i = 0; i < 4; ++i) held->a[i] = inv * s.pa[i], held->b[i] = inv * s.pb[i];
+        held->valid = true;
+    }
     return out;
 }
 
@@ -474,7 +479,7 @@ LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, cons
 }  // namespace
 
 CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
-                           double tolerance, uint32_t max_iterations) {
+                           double tolerance, uint32_t max_iterations, HeldTetrahedron* held) {
     if (max_iterations == 0) max_iterations = 1;
     CoreDistance c;
     LocalDistance l;
@@ -484,7 +489,7 @@ CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const Core
     } else {
         l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             c.center_offset = pair.t;
-            return distance_loop(pair, 0.0, tolerance, max_iterations);
+            return distance_loop(pair, 0.0, tolerance, max_iterations, held);
         });
     }
     c.distance = l.intersecting ? 0 : l.core;
@@ -498,7 +503,7 @@ CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const Core
 }
 
 DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
-                            double tolerance, uint32_t max_iterations) {
+                            double tolerance, uint32_t max_iterations, HeldTetrahedron* held) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const double radius_a = ca.radius, radius_b = cb.radius;
@@ -508,7 +513,7 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
             ? closed_form_distance(ca, pose_a, cb, pose_b, center_offset)
             : with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
                   center_offset = pair.t;
-                  return distance_loop(pair, margin, tolerance, max_iterations);
+                  return distance_loop(pair, margin, tolerance, max_iterations, held);
               });
 
     DistanceResult r;

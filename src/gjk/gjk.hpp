@@ -26,6 +26,13 @@ struct DistanceResult {
     Termination termination = Termination::None;
 };
 
+// GJK's last simplex when it is a tetrahedron holding the origin: support points of A and of B
+// (A's frame, the caller's scale), where the expanding polytope algorithm can start.
+struct HeldTetrahedron {
+    Vec3 a[4], b[4];
+    bool valid = false;
+};
+
 // Distance between a at pose_a and b at pose_b. tolerance: relative error of the distance, in
 // (0, 1). max_iterations >= 1 is a guard only. Any finite input terminates within max_iterations
 // support evaluations and gives finite outputs. When a rounding-limit rule ends the run (Johnson
@@ -33,8 +40,9 @@ struct DistanceResult {
 // stayed below 4e-9 in the peer tests, where 6 of 1800 random pairs ended on such a rule, and a
 // cylinder or cone rim 1e-8 of the size from another shape came out up to 1e-11 of the size too
 // far (test_gjk_curved). The distance is then too large, never too small beyond rounding.
+// held (may be null) receives the final tetrahedron when the shapes intersect.
 DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
-                            double tolerance, uint32_t max_iterations);
+                            double tolerance, uint32_t max_iterations, HeldTetrahedron* held = nullptr);
 
 // True when a at pose_a and b at pose_b overlap or touch (within rounding). io_axis (world frame,
 // from A toward B, any length) seeds the search; a zero or non-finite axis means a fresh start.

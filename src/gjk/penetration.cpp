@@ -56,14 +56,16 @@ CoreDepth point_in_box_depth(const CoreOf& ca, const Transform& pose_a, const Co
 
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                                double tolerance, uint32_t max_iterations) {
-    DistanceResult r = gjk_distance(a, pose_a, b, pose_b, tolerance, max_iterations);
+    HeldTetrahedron held;  // GJK's tetrahedron around the origin, for the cores (the expansion's start)
+    DistanceResult r = gjk_distance(a, pose_a, b, pose_b, tolerance, max_iterations, &held);
     if (!r.intersecting) return r;
     const CoreOf ca = classify(a), cb = classify(b);
     const double margin = ca.radius + cb.radius;
     CoreDistance c;
     if (margin > 0) {
         // As the expansion, at least 16 support calls: a guard-stopped GJK's gap is no gap.
-        c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations < 16 ? 16 : max_iterations);
+        held.valid = false;  // that one was of the rounded shapes
+        c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations < 16 ? 16 : max_iterations, &held);
     } else {  // the cores are the shapes: gjk_distance has answered already (they overlap)
         c.overlap = true;
         c.center_offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
@@ -105,7 +107,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // The tetrahedron alone takes 6 to 12 support calls.
         const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-            return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget).run(tolerance);
+            return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget, &held).run(tolerance);
         });
         depth.iterations += c.iterations;
         total = depth.depth + margin;
