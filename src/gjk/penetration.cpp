@@ -52,6 +52,17 @@ CoreDepth point_in_box_depth(const CoreOf& ca, const Transform& pose_a, const Co
     return d;
 }
 
+// The cores' separation along the unit axis n (A's frame, from A toward B): B's support value
+// along -n less A's along n, a lower bound of their gap when positive; a_point gets A's support
+// point along n.
+double separation_along(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b, Vec3 n,
+                        Vec3& a_point) {
+    return with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+        Vec3 pb;
+        return -dot(n, pair(n, a_point, pb));
+    });
+}
+
 }  // namespace
 
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
@@ -82,10 +93,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     Vec3 along_a;      // A's core's support point along the axis (A's frame)
     if (!c.overlap && dot(c.unit, c.unit) > 0) {
         apart = true;
-        along = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-            Vec3 pb;
-            return -dot(c.unit, pair(c.unit, along_a, pb));
-        });
+        along = separation_along(ca, pose_a, cb, pose_b, c.unit, along_a);
         const double scale = max_abs(c.center_offset) + max_abs(c.point_a) + max_abs(c.point_b);
         axis_shows_gap = c.distance - along <= 0x1p-30 * scale;
     }
@@ -124,10 +132,8 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // The deepest points: A's core's support point along the axis, B's the gap beyond.
         if (apart) {
             Vec3 n_a;
-            const double along_n = dot(depth.n, depth.n) > 0 ? with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-                Vec3 pb;
-                return -dot(depth.n, pair(depth.n, n_a, pb));
-            }) : -INFINITY;
+            const double along_n =
+                dot(depth.n, depth.n) > 0 ? separation_along(ca, pose_a, cb, pose_b, depth.n, n_a) : -INFINITY;
             const bool use_n = along_n > along;
             const double gap = use_n ? along_n : along;
             if (gap > 0 && margin - gap < total) {
