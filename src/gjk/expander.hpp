@@ -116,8 +116,7 @@ public:
 
 private:
     // The faces of the least and the second least key (second -1 with one face). Written with
-    // selects, not branches: which face holds the least is data, and mispredicted branches made
-    // this scan a fifth of a curved pair's expansion.
+    // selects, not branches: which face holds the least is data, and branches on it mispredict.
     void least_two(int& first, int& second) const {
         double m1 = key_[0], m2 = INFINITY;
         int f1 = 0, f2 = -1;
@@ -208,10 +207,10 @@ private:
     // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
     // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
     //
-    // It starts from C's extreme points along the six axes, which also set the working scale:
-    // the largest of them is brought near 1 (a power of two, exact). One support point alone can
-    // lie far inside C's extent (a triangle's corner 1e-300 from the origin scaled the rest of a
-    // triangle 4 wide to overflow; found by fuzzing).
+    // GJK's tetrahedron when it serves (from_seed); else C's extreme points along the six axes,
+    // which also set the working scale: the largest of them is brought near 1 (a power of two,
+    // exact). One support point alone can lie far inside C's extent (a triangle's corner 1e-300
+    // from the origin scaled the rest of a triangle 4 wide to overflow; found by fuzzing).
     Termination build_tetrahedron(CoreDepth& out) {
         out.n = normalized_or(hint_, {1, 0, 0});
         if (seed_ != nullptr && seed_->valid && from_seed()) return Termination::None;

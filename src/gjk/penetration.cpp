@@ -75,7 +75,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     CoreDistance c;
     if (margin > 0) {
         // As the expansion, at least 16 support calls: a guard-stopped GJK's gap is no gap.
-        held.valid = false;  // that one was of the rounded shapes
+        held.valid = false;  // core_distance gives its own tetrahedron, or none
         c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations < 16 ? 16 : max_iterations, &held);
     } else {  // the cores are the shapes: gjk_distance has answered already (they overlap)
         c.overlap = true;
