@@ -67,15 +67,16 @@ double separation_along(const CoreOf& ca, const Transform& pose_a, const CoreOf&
 
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                                double tolerance, uint32_t max_iterations) {
-    HeldTetrahedron held;  // GJK's tetrahedron around the origin, for the cores (the expansion's start)
-    DistanceResult r = gjk_distance(a, pose_a, b, pose_b, tolerance, max_iterations, &held);
-    if (!r.intersecting) return r;
     const CoreOf ca = classify(a), cb = classify(b);
     const double margin = ca.radius + cb.radius;
+    // GJK's tetrahedron around the origin, the expansion's start: of the shapes themselves when
+    // they have no radius, else of core_distance's run.
+    HeldTetrahedron held;
+    DistanceResult r = gjk_distance(a, pose_a, b, pose_b, tolerance, max_iterations, margin > 0 ? nullptr : &held);
+    if (!r.intersecting) return r;
     CoreDistance c;
     if (margin > 0) {
         // As the expansion, at least 16 support calls: a guard-stopped GJK's gap is no gap.
-        held.valid = false;  // core_distance gives its own tetrahedron, or none
         c = core_distance(ca, pose_a, cb, pose_b, tolerance, max_iterations < 16 ? 16 : max_iterations, &held);
     } else {  // the cores are the shapes: gjk_distance has answered already (they overlap)
         c.overlap = true;
