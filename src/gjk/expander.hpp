@@ -21,6 +21,7 @@ using namespace kernels;
 inline constexpr double kEps = 2.220446049250313e-16;
 inline constexpr int kMaxVertices = 4 + 128;
 inline constexpr int kMaxFaces = 2 * kMaxVertices;
+inline constexpr int kNearFrom = 24;  // faces from which the expansion keeps its near faces apart
 static_assert(kMaxVertices <= 256 && kMaxFaces <= 32767);  // uint8_t vertex and int16_t face indices
 
 struct Vertex {
@@ -34,10 +35,13 @@ struct Face {
     // n . x when the origin lies beyond it (< 0).
     double d;
     double off;     // n . x for x on the face
-    double l[3];    // the triangle's nearest point to the origin as a combination of the corners
+    // The triangle's nearest point to the origin as a combination of the corners: on an edge, the
+    // weights; inside, the corners' area coordinates, not yet normalised (weights()).
+    double l[3];
     bool edge;      // that point is on an edge (the origin's projection falls outside)
     bool resolved;  // d, l and edge are known (see resolve); until then d is the plane's offset
     int16_t adj[3];  // the face across edge k (v[k] -> v[k + 1]), by slot
+    uint8_t back[3];  // the index of edge k in face adj[k] (where it runs v[k + 1] -> v[k])
 };
 
 struct Plane {
@@ -97,7 +101,7 @@ public:
                 f = second;
                 if (faces_[f].resolved) break;
             }
-            const Face face = faces_[f];
+            const Face& face = faces_[f];  // expand changes no face when it fails
             if (calls_ >= budget_ || nv_ == kMaxVertices) return finish(face, Termination::MaxIterations, out);
             Vertex x;
             x.w = support(face.n, x);
@@ -106,21 +110,33 @@ public:
             const double gap = h - face.off;
             // Support point on the face's plane within the rounding of points of C's size.
             if (gap <= floor()) return finish_converged(face, x, tolerance, Termination::RepeatedSupport, out);
-            // The face's own support value, not the smallest seen: the axis returned must itself
-            // give the depth (B moved by it along the axis touches A).
+            // The face's own support value first (its axis gives the depth itself, B moved by it
+            // along the axis touches A), then the smallest seen, which holds the same for its
+            // own axis: both bound the depth from above, the face's key from below.
             if (face.d >= 0 && h - face.d <= tolerance * h)
                 return finish_converged(face, x, tolerance, Termination::RelativeError, out);
+            if (face.d >= 0 && upper - face.d <= tolerance * upper) return finish_upper(Termination::RelativeError, out);
             if (!expand(x, f)) return finish(face, Termination::NoProgress, out);
+            if (n_near_ >= 0 || nf_ >= kNearFrom) keep_near(upper);
         }
     }
 
 private:
-    // The faces of the least and the second least key (second -1 with one face). Written with
-    // selects, not branches: which face holds the least is data, and branches on it mispredict.
+    // The faces of the least and the second least key (second -1 with one face): among near_
+    // when it is kept, else among all. Written with selects, not branches: which face holds the
+    // least is data, and branches on it mispredict.
     void least_two(int& first, int& second) const {
-        double m1 = key_[0], m2 = INFINITY;
-        int f1 = 0, f2 = -1;
-        for (int i = 1; i < nf_; ++i) {
+        if (n_near_ > 0)
+            least_two(n_near_, [&](int j) { return int(near_[j]); }, first, second);
+        else  // all faces: a small polytope, or none at most upper (rounding)
+            least_two(nf_, [](int j) { return j; }, first, second);
+    }
+    template <class Index>
+    [[gnu::always_inline]] void least_two(int n, Index index, int& first, int& second) const {
+        int f1 = index(0), f2 = -1;
+        double m1 = key_[f1], m2 = INFINITY;
+        for (int j = 1; j < n; ++j) {
+            const int i = index(j);
             const double k = key_[i];
             const bool below1 = k < m1, below2 = k < m2;
             f2 = below1 ? f1 : (below2 ? i : f2);
@@ -132,13 +148,48 @@ private:
         second = f2;
     }
 
+    // near_, kept once the polytope has kNearFrom faces: the faces whose key is at most upper
+    // (C's smallest support value seen), the only ones that can still come up as the least. A
+    // face's key only grows, and the least key is at most the depth, itself at most upper: a face
+    // above it is never needed, and most faces of a deep overlap lie there (C's far side). On a
+    // small polytope the list costs more than the scan it saves.
+    //
+    // After an expansion: the new faces (written_) replace the visible ones in their slots;
+    // listed_ marks them so that no slot is listed twice.
+    void keep_near(double upper) {
+        int k = 0;
+        if (n_near_ < 0) {  // the first time: every face
+            for (int i = 0; i < nf_; ++i) {
+                listed_[i] = 0;
+                if (key_[i] <= upper) near_[k++] = int16_t(i);
+            }
+            n_near_ = k;
+            return;
+        }
+        ++listing_;
+        for (int w = 0; w < n_written_; ++w) listed_[written_[w]] = listing_;
+        for (int j = 0; j < n_near_; ++j) {  // selects: which faces stay is data
+            const int i = near_[j];
+            near_[k] = int16_t(i);
+            k += listed_[i] != listing_ && key_[i] <= upper;
+        }
+        for (int w = 0; w < n_written_; ++w) {
+            near_[k] = written_[w];
+            k += key_[written_[w]] <= upper;
+        }
+        n_near_ = k;
+    }
+
     // C's support point along d at the working scale (set by build_tetrahedron).
-    Vec3 support(Vec3 d, Vertex& x) {
+    [[gnu::always_inline]] Vec3 support(Vec3 d, Vertex& x) {
         ++calls_;
         const Vec3 w = pair_(d, x.a, x.b);
         x.w = w;
-        const double m = max_abs(w);
-        if (m > size_) size_ = m;
+        // Plain selects (maxsd), not max_abs's NaN tests: a NaN coordinate leaves size_ as it is.
+        const double ax = std::fabs(w.x), ay = std::fabs(w.y), az = std::fabs(w.z);
+        size_ = ax > size_ ? ax : size_;
+        size_ = ay > size_ ? ay : size_;
+        size_ = az > size_ ? az : size_;
         return w;
     }
     // Rounding of a support value or a face offset of points of C's size.
@@ -153,18 +204,16 @@ private:
         return nv_++;
     }
 
-    // The face through i, j, k (in that winding): false when its normal is not defined to
-    // rounding (a sliver).
-    bool make_face(int i, int j, int k, Face& f) const {
-        const Vec3 e1 = verts_[j].w - verts_[i].w, e2 = verts_[k].w - verts_[i].w;
+    // The plane of the triangle i, j, k (normal by that winding; offset at the corners' mean):
+    // false when its normal is not defined to rounding (a sliver).
+    [[gnu::always_inline]] bool make_plane(int i, int j, int k, Plane& p) const {
+        const Vec3 &wi = verts_[i].w, &wj = verts_[j].w, &wk = verts_[k].w;
+        const Vec3 e1 = wj - wi, e2 = wk - wi;
         const Vec3 n = cross(e1, e2);
         const double nn = dot(n, n);
         if (!(nn > (64 * kEps) * (64 * kEps) * dot(e1, e1) * dot(e2, e2))) return false;
-        f.v[0] = uint8_t(i), f.v[1] = uint8_t(j), f.v[2] = uint8_t(k);
-        f.n = (1 / std::sqrt(nn)) * n;
-        f.off = (dot(f.n, verts_[i].w) + dot(f.n, verts_[j].w) + dot(f.n, verts_[k].w)) / 3;
-        f.d = f.off;
-        f.resolved = false;
+        p.n = (1 / std::sqrt(nn)) * n;
+        p.off = dot(p.n, wi + wj + wk) * (1.0 / 3);
         return true;
     }
 
@@ -172,23 +221,17 @@ private:
     // p = off n, or, when p falls outside the triangle, the nearest point of its edges, whose
     // distance (above the plane's) becomes f.d. Done only for faces that come up as the nearest
     // (most never do): d can only grow, so a face whose d is resolved and least is the nearest.
-    void resolve(Face& f) const {
+    [[gnu::always_inline]] void resolve(Face& f) const {
         f.resolved = true;
         const Vec3 w[3] = {verts_[f.v[0]].w, verts_[f.v[1]].w, verts_[f.v[2]].w};
         const Vec3 p = f.off * f.n;
-        double sum = 0;
         bool inside = true;
         for (int c = 0; c < 3; ++c) {
             f.l[c] = dot(f.n, cross(w[(c + 1) % 3] - p, w[(c + 2) % 3] - p));
-            sum += f.l[c];
             inside = inside && f.l[c] >= 0;
         }
         f.edge = !(inside || f.off < 0);
-        if (!f.edge) {
-            const double s = sum > 0 ? 1 / sum : 0;
-            for (double& c : f.l) c = sum > 0 ? (c > 0 ? c * s : 0) : 1.0 / 3;
-            return;
-        }
+        if (!f.edge) return;
         double best = INFINITY;
         for (int c = 0; c < 3; ++c) {
             const Vec3 e = w[(c + 1) % 3] - w[c];
@@ -204,6 +247,16 @@ private:
         if (best > f.d) f.d = best;
     }
 
+    // The weights of a resolved face's nearest point (f.l normalised when inside; equal thirds
+    // when rounding leaves no positive area).
+    static void weights(const Face& f, double l[3]) {
+        double sum = 0;
+        for (int c = 0; c < 3; ++c) sum += (l[c] = f.l[c]);
+        if (f.edge) return;
+        const double s = sum > 0 ? 1 / sum : 0;
+        for (int c = 0; c < 3; ++c) l[c] = sum > 0 ? (l[c] > 0 ? l[c] * s : 0) : 1.0 / 3;
+    }
+
     // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
     // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
     //
@@ -211,7 +264,7 @@ private:
     // which also set the working scale: the largest of them is brought near 1 (a power of two,
     // exact). One support point alone can lie far inside C's extent (a triangle's corner 1e-300
     // from the origin scaled the rest of a triangle 4 wide to overflow; found by fuzzing).
-    Termination build_tetrahedron(CoreDepth& out) {
+    [[gnu::noinline]] Termination build_tetrahedron(CoreDepth& out) {
         out.n = normalized_or(hint_, {1, 0, 0});
         if (seed_ != nullptr && seed_->valid && from_seed()) return Termination::None;
         Vertex ext[6];
@@ -303,7 +356,7 @@ private:
     // the six axis supports. Taken only at a scale that keeps or shrinks its points (an enlarging
     // one needs the axes' bound on C, see first_scale) and when each corner stands clear of the
     // opposite face by 1e-6 of its size; else C's axis extremes start (false, nothing kept).
-    bool from_seed() {
+    [[gnu::noinline]] bool from_seed() {
         double big = 0;
         for (int i = 0; i < 4; ++i) big = std::fmax(big, std::fmax(max_abs(seed_->a[i]), max_abs(seed_->b[i])));
         const double sc = pair_scale({big, 0, 0}, {});
@@ -331,25 +384,32 @@ private:
     // behind it (by more than min_height when > 0), and their neighbours. False for a sliver
     // (a face without a normal, or faces wound inconsistently by rounding on a tetrahedron too
     // thin to orient).
-    bool close_tetrahedron(double min_height) {
+    [[gnu::noinline]] bool close_tetrahedron(double min_height) {
         const int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
         for (const auto& t : tri) {
-            Face f;
-            bool ok = make_face(t[0], t[1], t[2], f);
-            if (ok && dot(f.n, verts_[t[3]].w) > f.off) ok = make_face(t[0], t[2], t[1], f);
-            if (ok && min_height > 0) ok = f.off - dot(f.n, verts_[t[3]].w) > min_height;
+            Plane p;
+            int b = t[1], c = t[2];
+            bool ok = make_plane(t[0], b, c, p);
+            if (ok && dot(p.n, verts_[t[3]].w) > p.off) {
+                b = t[2], c = t[1];
+                ok = make_plane(t[0], b, c, p);
+            }
+            if (ok && min_height > 0) ok = p.off - dot(p.n, verts_[t[3]].w) > min_height;
             if (!ok) return false;
-            put(nf_++, f);
+            put(nf_++, t[0], b, c, p);
         }
         // Each edge's neighbour: the face holding the reverse edge.
         for (int i = 0; i < 4; ++i)
             for (int k = 0; k < 3; ++k) {
                 const int a = faces_[i].v[k], b = faces_[i].v[(k + 1) % 3];
-                int across = -1;
-                for (int j = 0; j < 4; ++j)
-                    if (j != i && edge_index(faces_[j], b, a) >= 0) across = j;
+                int across = -1, back = -1;
+                for (int j = 0; j < 4 && across < 0; ++j) {
+                    const int e = j != i ? edge_index(faces_[j], b, a) : -1;
+                    if (e >= 0) across = j, back = e;
+                }
                 if (across < 0) return false;
                 faces_[i].adj[k] = int16_t(across);
+                faces_[i].back[k] = uint8_t(back);
             }
         interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
         return true;
@@ -377,7 +437,7 @@ private:
         int n_visible = 0;
         int stack[kMaxFaces];
         int top = 0;
-        int from[kMaxVertices], to[kMaxVertices], outside[kMaxVertices];
+        int from[kMaxVertices], to[kMaxVertices], outside[kMaxVertices], outside_edge[kMaxVertices];
         int nh = 0;
         mark_[seed] = epoch_ * 2 + 1;
         stack[top++] = seed;
@@ -397,7 +457,7 @@ private:
                 }
                 if (mark_[g] == epoch_ * 2 + 1) continue;  // shared with another visible face
                 if (nh == kMaxVertices) return false;
-                from[nh] = f.v[k], to[nh] = f.v[(k + 1) % 3], outside[nh] = g, ++nh;
+                from[nh] = f.v[k], to[nh] = f.v[(k + 1) % 3], outside[nh] = g, outside_edge[nh] = f.back[k], ++nh;
             }
         }
         // One cycle: every vertex starts at most one edge, and following them visits them all.
@@ -419,9 +479,9 @@ private:
         // The new faces, checked before anything changes.
         const int xi = nv_;
         verts_[xi] = x;
-        Slots<Face, kMaxVertices> fresh;
+        Slots<Plane, kMaxVertices> fresh;
         for (int i = 0; i < nh; ++i) {
-            if (!make_face(from[i], to[i], xi, fresh[i])) return false;
+            if (!make_plane(from[i], to[i], xi, fresh[i])) return false;
             if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
         }
         ++nv_;
@@ -435,15 +495,19 @@ private:
             key_[vis[h]] = INFINITY;
             faces_[vis[h]].resolved = true;
         }
+        for (int i = 0; i < nh; ++i) put(slot[i], from[i], to[i], xi, fresh[i]);
         for (int i = 0; i < nh; ++i) {
-            Face& f = fresh[i];
+            Face& f = faces_[slot[i]];
             f.adj[0] = int16_t(outside[i]);
             f.adj[1] = int16_t(slot[start_of[to[i]]]);  // across to -> x: the new face leaving `to`
             f.adj[2] = int16_t(slot[end_of[from[i]]]);  // across x -> from: the one reaching `from`
+            f.back[0] = uint8_t(outside_edge[i]), f.back[1] = 2, f.back[2] = 1;
             Face& g = faces_[outside[i]];
-            g.adj[edge_index(g, to[i], from[i])] = int16_t(slot[i]);
+            g.adj[outside_edge[i]] = int16_t(slot[i]);
+            g.back[outside_edge[i]] = 0;
         }
-        for (int i = 0; i < nh; ++i) put(slot[i], fresh[i]);
+        for (int i = 0; i < nh; ++i) written_[i] = int16_t(slot[i]);
+        n_written_ = nh;
         return true;
     }
     // The index k of the edge a -> b of face f (v[k] == a, v[k + 1] == b), or -1.
@@ -453,11 +517,16 @@ private:
         return -1;
     }
 
-    void put(int i, const Face& f) {
-        mark_[i] = 0;
-        faces_[i] = f;
-        key_[i] = f.d;
-        plane_[i] = {f.n, f.off};
+    // Slot s: the face i, j, k on plane p, unresolved; its neighbours are set by the caller.
+    void put(int s, int i, int j, int k, const Plane& p) {
+        Face& f = faces_[s];
+        f.v[0] = uint8_t(i), f.v[1] = uint8_t(j), f.v[2] = uint8_t(k);
+        f.n = p.n;
+        f.d = f.off = p.off;
+        f.resolved = false;
+        mark_[s] = 0;
+        key_[s] = p.off;
+        plane_[s] = p;
     }
 
     // The nearest face's nearest point to the origin, as a combination of its corners.
@@ -468,7 +537,7 @@ private:
     // thick, in one argument order, by 1.2 % of the depth: found by fuzzing), the better of the
     // two directions is reported with its own support value (each is an upper bound of the depth,
     // exact along its axis).
-    CoreDepth finish_converged(const Face& f, const Vertex& x, double tolerance, Termination t, CoreDepth& out) {
+    [[gnu::noinline]] CoreDepth finish_converged(const Face& f, const Vertex& x, double tolerance, Termination t, CoreDepth& out) {
         if (!f.edge || !(f.d > 0)) return finish(f, t, out);
         const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
         const Vec3 qn = normalized_or(q, f.n);
@@ -485,27 +554,32 @@ private:
         out.termination = t;
         return finish(out);
     }
-    CoreDepth finish(const Face& f, Termination t, CoreDepth& out) {
-        if (f.d < 0 && dot(upper_n_, upper_n_) > 0) {
-            // Stopped before the polytope held the origin (rounding, or the guard): the smallest
-            // support value seen, an upper bound (B moved by it along upper_n_ no longer overlaps).
-            const double u = dot(upper_n_, upper_x_.w);
-            out.depth = u > 0 ? u : 0;
-            out.n = upper_n_;
-            out.point_a = upper_x_.a;
-            out.point_b = upper_x_.a - out.depth * upper_n_;
-            out.termination = t;
-            return finish(out);
-        }
-        out.point_a = f.l[0] * verts_[f.v[0]].a + f.l[1] * verts_[f.v[1]].a + f.l[2] * verts_[f.v[2]].a;
-        out.point_b = f.l[0] * verts_[f.v[0]].b + f.l[1] * verts_[f.v[1]].b + f.l[2] * verts_[f.v[2]].b;
+    // The smallest support value seen and its axis: an upper bound of the depth (B moved by it
+    // along upper_n_ no longer overlaps), exact along that axis.
+    [[gnu::noinline]] CoreDepth finish_upper(Termination t, CoreDepth& out) {
+        const double u = dot(upper_n_, upper_x_.w);
+        out.depth = u > 0 ? u : 0;
+        out.n = upper_n_;
+        out.point_a = upper_x_.a;
+        out.point_b = upper_x_.a - out.depth * upper_n_;
+        out.termination = t;
+        return finish(out);
+    }
+    [[gnu::noinline]] CoreDepth finish(const Face& f, Termination t, CoreDepth& out) {
+        // Stopped before the polytope held the origin (rounding, or the guard): the smallest
+        // support value seen.
+        if (f.d < 0 && dot(upper_n_, upper_n_) > 0) return finish_upper(t, out);
+        double l[3];
+        weights(f, l);
+        out.point_a = l[0] * verts_[f.v[0]].a + l[1] * verts_[f.v[1]].a + l[2] * verts_[f.v[2]].a;
+        out.point_b = l[0] * verts_[f.v[0]].b + l[1] * verts_[f.v[1]].b + l[2] * verts_[f.v[2]].b;
         out.depth = f.d > 0 ? f.d : 0;
         out.n = f.n;
         // The origin still beyond the polytope (the guard, with no support value seen): depth 0 at
         // one point of the nearest face, whose two parts stand for the common point.
         if (!(f.d > 0)) out.point_b = out.point_a;
         // Nearest on an edge: the direction to that point, so that a - b = depth n holds.
-        const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
+        const Vec3 q = l[0] * verts_[f.v[0]].w + l[1] * verts_[f.v[1]].w + l[2] * verts_[f.v[2]].w;
         if (f.edge) out.n = normalized_or(q, f.n);
         out.termination = t;
         return finish(out);
@@ -545,6 +619,11 @@ private:
     Slots<uint32_t, kMaxFaces> mark_;
     uint32_t epoch_ = 0;
     int free_[kMaxFaces];  // slots of faces that left the polytope (key_ INFINITY, never reached)
+    int16_t near_[kMaxFaces];        // the faces that can come up as the least (keep_near)
+    int16_t written_[kMaxVertices];  // the slots the last expansion wrote
+    uint32_t listed_[kMaxFaces];     // == listing_: written by the last expansion
+    uint32_t listing_ = 0;
+    int n_near_ = -1, n_written_ = 0;  // n_near_ -1: near_ not kept yet
     int n_free_ = 0;
     int nv_ = 0, nf_ = 0;
 };
