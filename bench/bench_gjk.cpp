@@ -506,7 +506,7 @@ BENCHMARK(BM_KairosIntersect)->ArgName("cached")->Arg(0)->Arg(1);
 BENCHMARK(BM_LibccdIntersect)->ArgName("mpr")->Arg(0)->Arg(1);
 
 // Overlapping pairs, scenario: 0 box/box, 1 hull32/hull32, 2 cylinder/cone.
-BENCHMARK(BM_KairosSignedDistance)->ArgNames({"scenario", "tol_exp"})->ArgsProduct({{BoxBox, Hull32, CylinderCone}, {10, 9, 8, 6}});
+BENCHMARK(BM_KairosSignedDistance)->ArgNames({"scenario", "tol_exp"})->ArgsProduct({{BoxBox, Hull32, CylinderCone}, {10, 11, 9, 8, 6}});
 BENCHMARK(BM_KairosCapiSignedDistance)->Apply(overlap_scenarios);
 BENCHMARK(BM_LibccdMprPenetration)->Apply(overlap_scenarios);
 BENCHMARK(BM_FclSignedDistance)->Apply(overlap_scenarios);

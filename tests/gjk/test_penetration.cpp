@@ -289,6 +289,97 @@ TEST(Penetration, CurvedAndDeepPairs) {
     EXPECT_GT(j.overlapping, j.cases / 3);
 }
 
+// Two cylinders with parallel axes: A - B is the cylinder of radius ra + rb and half height
+// ha + hb (a disc plus a disc, a segment plus a segment), so the signed distance has a closed form
+// for any offset and any turn of B about the shared axis (or upside down). Where the curved side
+// gives the depth the expansion runs long on a surface curved one way only (its near-face list and
+// its upper-bound stop in use); the axial cases end on the flat caps. Checked at the default
+// tolerance (1e-10, relative to the depth) and at 1e-12: the value against the closed form, and
+// the answer's own certificate, exact whatever GJK says near contact: B moved by the depth along
+// the axis has its support plane on A's (parallel cylinders touching along a line are where GJK's
+// distance stops short, at up to 5e-9 of the size), and the deepest points lie on those planes.
+//
+// Deep overlaps on the curved side (depth about half of C's radius) can use up the expansion's
+// 128 support calls before the tolerance: those answers say MaxIterations and are held to 1e-7
+// of the size (seen: 1.6e-8 relative), the rest to the tolerance.
+TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
+    const uint64_t seed = 331;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, overlapping = 0, curved_long = 0, failures = 0;
+    int guard_stopped[2] = {0, 0};  // overlapping answers at 1e-10, at 1e-12
+    double worst = 0;
+    std::vector<double> errors;
+    auto fail = [&](const std::string& what) {
+        if (++failures <= 10) ADD_FAILURE() << what;
+    };
+    for (int i = 0; i < 300; ++i) {
+        const double ra = 0.2 + u(rng), ha = 0.2 + u(rng), rb = 0.2 + u(rng), hb = 0.2 + u(rng);
+        const double big_r = ra + rb, big_h = ha + hb, size = std::max(big_r, big_h);
+        CylinderShape ca(ra, ha), cb(rb, hb);
+        const Quat qa = random_quat(rng);
+        const double turn = 2 * M_PI * u(rng);
+        Quat about_axis{0, 0, std::sin(turn / 2), std::cos(turn / 2)};
+        if (i % 3 == 0) about_axis = about_axis * Quat{1, 0, 0, 0};  // upside down: still parallel
+        // Offsets in A's frame, most of them lateral enough that the side gives the depth.
+        const double rho = 1.15 * big_r * u(rng), phi = 2 * M_PI * u(rng);
+        const double dz = (i % 4 == 0 ? 1.15 : 0.6) * big_h * (2 * u(rng) - 1);
+        const Transform xa = pose({u(rng), u(rng), u(rng)}, qa);
+        const Transform xb = pose(xa.apply({rho * std::cos(phi), rho * std::sin(phi), dz}), qa * about_axis);
+        const double radial = big_r - rho, axial = big_h - std::fabs(dz);
+        const double truth = radial > 0 && axial > 0 ? -std::min(radial, axial)
+                                                     : std::hypot(std::max(-radial, 0.0), std::max(-axial, 0.0));
+        for (int order = 0; order < 2; ++order) {
+            const Shape& p = order ? static_cast<const Shape&>(cb) : ca;
+            const Shape& q = order ? static_cast<const Shape&>(ca) : cb;
+            const Transform& xp = order ? xb : xa;
+            const Transform& xq = order ? xa : xb;
+            for (double tolerance : {1e-10, 1e-12}) {
+                char buf[160];
+                std::snprintf(buf, sizeof buf, "parallel cylinders seed %llu case %d order %d tolerance %.0g truth %.17g",
+                              static_cast<unsigned long long>(seed), i, order, tolerance, truth);
+                const std::string at = buf;
+                const DistanceResult r = signed_distance(p, xp, q, xq, tolerance, 256);
+                ++cases;
+                const bool guard = r.termination == Termination::MaxIterations;
+                guard_stopped[tolerance == 1e-10 ? 0 : 1] += guard && truth < 0;
+                const double err = std::fabs(r.distance - truth);
+                errors.push_back(err / size);
+                worst = std::max(worst, err / size);
+                const double allowed = guard ? 1e-7 * size : tolerance * std::fabs(truth) + 1e-13 * size;
+                if (!(err <= allowed)) fail(describe("signed distance off", r.distance - truth, at));
+                if (truth >= 0 || tolerance != 1e-10) continue;
+                ++overlapping;
+                if (radial < axial && r.iterations >= 20) ++curved_long;
+                if (!(std::fabs(length(r.axis) - 1) <= 1e-12)) fail(describe("axis not unit", length(r.axis), at));
+                // B moved by the depth along the axis: its support plane on A's (the separation
+                // along the axis, from the supports; 0 when the axis is a minimum translation).
+                Transform moved = xq;
+                moved.translation = xq.translation - r.distance * r.axis;
+                const Vec3 sa = xp.apply(support(p, xp.to_local_direction(r.axis)));
+                const Vec3 sb = moved.apply(support(q, moved.to_local_direction(-r.axis)));
+                const double sep = dot(r.axis, sb - sa);
+                if (!(std::fabs(sep) <= allowed)) fail(describe("moved by the depth, not touching along the axis", sep, at));
+                const Vec3 gap = r.point_b - r.point_a - r.distance * r.axis;
+                if (!(length(gap) <= 1e-12 * size)) fail(describe("deepest points not distance * axis apart", length(gap), at));
+                const Vec3 sb0 = xq.apply(support(q, xq.to_local_direction(-r.axis)));
+                if (!(std::fabs(dot(r.axis, sa - r.point_a)) <= allowed) || !(std::fabs(dot(r.axis, sb0 - r.point_b)) <= allowed))
+                    fail(describe("deepest points off the support planes", dot(r.axis, sa - r.point_a), at));
+            }
+        }
+    }
+    std::sort(errors.begin(), errors.end());
+    std::printf("parallel cylinders: %d signed distances, %d overlapping at 1e-10, %d of them on the curved side "
+                "with >= 20 support calls; guard-stopped: %d of those at 1e-10, %d at 1e-12; error median %.3g, "
+                "max %.3g of the size\n",
+                cases, overlapping, curved_long, guard_stopped[0], guard_stopped[1], errors[errors.size() / 2], worst);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    // The family reaches the long curved expansions and the caps, and the guard only rarely.
+    EXPECT_GT(curved_long, 40) << "seed " << seed;
+    EXPECT_LT(curved_long, overlapping) << "seed " << seed;
+    EXPECT_LE(guard_stopped[0], overlapping / 50) << "seed " << seed;
+}
+
 // Cores whose difference is flat: capsules whose segments cross (the depth is the radii), coplanar
 // triangles overlapping (depth 0: touching), a sphere centred on a capsule's segment.
 TEST(Penetration, FlatCoreDifferences) {
