@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The expanding polytope algorithm (van den Bergen's EPA; docs/algorithms.md §2b) on the cores'
 // configuration-space obstacle C = A - B, in A's frame, with fixed-size arrays (no allocation):
-// the polytope, its faces and their neighbours, the expansion step and its rounding rules. Used
+// the expansion step, its stops and its rounding rules, on the polytope of gjk/polytope.hpp. Used
 // by signed_distance (penetration.cpp) only.
 #pragma once
 
@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "gjk/gjk.hpp"
+#include "gjk/polytope.hpp"
 #include "gjk/support_kernels.hpp"
 #include "gjk/termination.hpp"
 #include "math/math.hpp"
@@ -17,62 +18,6 @@ namespace kairos {
 namespace epa_detail {
 
 using namespace kernels;
-
-inline constexpr double kEps = 2.220446049250313e-16;
-inline constexpr int kMaxVertices = 4 + 128;
-inline constexpr int kMaxFaces = 2 * kMaxVertices;
-inline constexpr int kNearFrom = 24;  // faces from which the expansion keeps its near faces apart
-static_assert(kMaxVertices <= 256 && kMaxFaces <= 32767);  // uint8_t vertex and int16_t face indices
-
-struct Vertex {
-    Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)
-};
-struct Face {
-    uint8_t v[3];  // counter-clockwise seen from outside
-    Vec3 n;        // outward unit normal
-    // The origin's distance to the triangle once resolved (not its plane: a sliver's plane, tilted
-    // by rounding, can pass nearer the origin than any of its points), or the plane's offset
-    // n . x when the origin lies beyond it (< 0).
-    double d;
-    double off;     // n . x for x on the face
-    // The triangle's nearest point to the origin as a combination of the corners: on an edge, the
-    // weights; inside, the corners' area coordinates, not yet normalised (weights()).
-    double l[3];
-    bool edge;      // that point is on an edge (the origin's projection falls outside)
-    bool resolved;  // d, l and edge are known (see resolve); until then d is the plane's offset
-    int16_t adj[3];  // the face across edge k (v[k] -> v[k + 1]), by slot
-    uint8_t back[3];  // the index of edge k in face adj[k] (where it runs v[k + 1] -> v[k])
-};
-
-struct Plane {
-    Vec3 n;
-    double off;
-};
-
-// Fixed storage whose slots start uninitialised: Vec3 zeroes itself, and zeroing the polytope's
-// arrays (30 kB) cost more than the expansion of a box pair. A slot is written before it is read.
-template <class T, int N>
-class Slots {
-public:
-    T& operator[](int i) { return slot_[i].t; }
-    const T& operator[](int i) const { return slot_[i].t; }
-
-private:
-    union Slot {
-        T t;
-        Slot() {}
-    };
-    Slot slot_[N];
-};
-
-// The cores' depth in A's frame at the caller's scale: a - b = depth * n for the deepest points.
-struct CoreDepth {
-    double depth = 0;
-    Vec3 n, point_a, point_b;
-    uint32_t iterations = 0;
-    Termination termination = Termination::None;
-    bool flat = false;  // C has no interior (or a sliver's): point_a and point_b unset
-};
 
 template <class Pair>
 class Expander {
