@@ -202,6 +202,11 @@ private:
         for (int c = 0; c < 3; ++c) l[c] = sum > 0 ? (l[c] > 0 ? l[c] * s : 0) : 1.0 / 3;
     }
 
+    // The point of face f's corners (C's, A's or B's: part) with weights l.
+    Vec3 combine(const Face& f, const double l[3], Vec3 Vertex::*part) const {
+        return l[0] * (verts_[f.v[0]].*part) + l[1] * (verts_[f.v[1]].*part) + l[2] * (verts_[f.v[2]].*part);
+    }
+
     // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
     // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
     //
@@ -484,7 +489,7 @@ private:
     // exact along its axis).
     [[gnu::noinline]] CoreDepth finish_converged(const Face& f, const Vertex& x, double tolerance, Termination t, CoreDepth& out) {
         if (!f.edge || !(f.d > 0)) return finish(f, t, out);
-        const Vec3 q = f.l[0] * verts_[f.v[0]].w + f.l[1] * verts_[f.v[1]].w + f.l[2] * verts_[f.v[2]].w;
+        const Vec3 q = combine(f, f.l, &Vertex::w);  // an edge point: f.l are its weights
         const Vec3 qn = normalized_or(q, f.n);
         Vertex y;
         const double hq = dot(qn, support(qn, y));
@@ -516,15 +521,15 @@ private:
         if (f.d < 0 && dot(upper_n_, upper_n_) > 0) return finish_upper(t, out);
         double l[3];
         weights(f, l);
-        out.point_a = l[0] * verts_[f.v[0]].a + l[1] * verts_[f.v[1]].a + l[2] * verts_[f.v[2]].a;
-        out.point_b = l[0] * verts_[f.v[0]].b + l[1] * verts_[f.v[1]].b + l[2] * verts_[f.v[2]].b;
+        out.point_a = combine(f, l, &Vertex::a);
+        out.point_b = combine(f, l, &Vertex::b);
         out.depth = f.d > 0 ? f.d : 0;
         out.n = f.n;
         // The origin still beyond the polytope (the guard, with no support value seen): depth 0 at
         // one point of the nearest face, whose two parts stand for the common point.
         if (!(f.d > 0)) out.point_b = out.point_a;
         // Nearest on an edge: the direction to that point, so that a - b = depth n holds.
-        const Vec3 q = l[0] * verts_[f.v[0]].w + l[1] * verts_[f.v[1]].w + l[2] * verts_[f.v[2]].w;
+        const Vec3 q = combine(f, l, &Vertex::w);
         if (f.edge) out.n = normalized_or(q, f.n);
         out.termination = t;
         return finish(out);
