@@ -156,12 +156,12 @@ inline Vec3 support(const Shape& s, Vec3 d) {
         }
         case ShapeKind::Cylinder: {
             const auto& c = static_cast<const CylinderShape&>(s);
-            const Vec3 radial = normalized_or({d.x, d.y, 0}, {0, 0, 0});
+            const Planar radial = radial_unit(d.x, d.y);
             return {c.radius * radial.x, c.radius * radial.y, support_sign(d.z) * c.half_height};
         }
         case ShapeKind::Cone: {
             const auto& c = static_cast<const ConeShape&>(s);
-            const Vec3 radial = normalized_or({d.x, d.y, 0}, {0, 0, 0});
+            const Planar radial = radial_unit(d.x, d.y);
             // Apex when d.z*h >= d.(base rim point) = r*|d_xy| - d.z*h.
             const double apex_score = d.z * c.half_height;
             const double rim_score = c.radius * (d.x * radial.x + d.y * radial.y) - d.z * c.half_height;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -55,6 +57,39 @@ TEST(MathHelpers, NormalizedOrGivesUnitVectorsAcrossScalesAndTheFallbackForZero)
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const Vec3 n = normalized_or({nan, nan, nan}, {1, 0, 0});
     EXPECT_EQ(n, (Vec3{1, 0, 0}));
+}
+
+// radial_unit stands in for normalized_or({x, y, 0}, {}) in the cylinder and cone supports, so
+// every GJK answer on them stays as it was: the same bits, not merely close ones.
+TEST(MathHelpers, RadialUnitIsNormalizedOrOfThePlanarPartBitForBit) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double den = std::numeric_limits<double>::denorm_min();
+    std::vector<double> values = {nan, -inf, -1e308, -1e300, -3.0, -1.0, -1e-300, -den, -0.0, 0.0,
+                                  den,  1e-310, 1e-300, 0.1,  1.0,  7.0,  1e200, 1e308, inf};
+    const uint64_t seed = 20261127;
+    uint64_t state = seed;
+    for (int i = 0; i < 2000; ++i) {  // random magnitudes over the whole exponent range
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const double mant = static_cast<double>(state >> 11) * 0x1p-53 * 2 - 1;
+        const int exp = static_cast<int>((state >> 3) % 2098) - 1074;
+        values.push_back(std::ldexp(mant, exp));
+    }
+    auto bits_equal = [](double a, double b) { return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, 8) == 0; };
+    int unit = 0;
+    for (size_t i = 0; i < values.size(); ++i) {
+        for (size_t j = 0; j < values.size(); j += (i < 19 ? 1 : 97)) {
+            const double x = values[i], y = values[j];
+            const Vec3 want = normalized_or({x, y, 0}, {0, 0, 0});
+            const Planar got = radial_unit(x, y);
+            ASSERT_TRUE(bits_equal(got.x, want.x) && bits_equal(got.y, want.y))
+                << "seed " << seed << ": (" << x << ", " << y << ") gives (" << got.x << ", " << got.y
+                << "), normalized_or (" << want.x << ", " << want.y << ")";
+            unit += std::fabs(std::hypot(got.x, got.y) - 1) < 1e-15;
+        }
+    }
+    // Most pairs are finite and not both zero: the comparison ran on real unit vectors.
+    EXPECT_GT(unit, 30000);
 }
 
 }  // namespace
