@@ -19,8 +19,13 @@ namespace epa_detail {
 
 using namespace kernels;
 
-template <class Pair>
+// MaxV: the polytope's vertex capacity (the tetrahedron's 4 and one per expansion step). The
+// default one lives on the stack (about 50 kB); the large one only on the heap (penetration.cpp).
+template <class Pair, int MaxV = kMaxVertices>
 class Expander {
+    static constexpr int kMaxV = MaxV, kMaxF = 2 * MaxV;
+    static_assert(kMaxV <= 256 && kMaxF <= 32767);  // uint8_t vertex and int16_t face indices
+
 public:
     // seed (may be null): GJK's tetrahedron, tried as the start before C's axis extremes.
     Expander(Pair pair, Vec3 hint, uint32_t budget, const HeldTetrahedron* seed = nullptr)
@@ -47,7 +52,7 @@ public:
                 if (faces_[f].resolved) break;
             }
             const Face& face = faces_[f];  // expand changes no face when it fails
-            if (calls_ >= budget_ || nv_ == kMaxVertices) return finish(face, Termination::MaxIterations, out);
+            if (calls_ >= budget_ || nv_ == kMaxV) return finish(face, Termination::MaxIterations, out);
             Vertex x;
             x.w = support(face.n, x);
             const double h = dot(face.n, x.w);
@@ -383,11 +388,11 @@ private:
     bool expand(const Vertex& x, int seed, double margin) {
         if (!(dot(plane_[seed].n, x.w) - plane_[seed].off > margin)) return false;
         ++epoch_;
-        int vis[kMaxFaces];  // the faces that see x
+        int vis[kMaxF];  // the faces that see x
         int n_visible = 0;
-        int stack[kMaxFaces];
+        int stack[kMaxF];
         int top = 0;
-        int from[kMaxVertices], to[kMaxVertices], outside[kMaxVertices], outside_edge[kMaxVertices];
+        int from[kMaxV], to[kMaxV], outside[kMaxV], outside_edge[kMaxV];
         int nh = 0;
         mark_[seed] = epoch_ * 2 + 1;
         stack[top++] = seed;
@@ -406,13 +411,13 @@ private:
                     }
                 }
                 if (mark_[g] == epoch_ * 2 + 1) continue;  // shared with another visible face
-                if (nh == kMaxVertices) return false;
+                if (nh == kMaxV) return false;
                 from[nh] = f.v[k], to[nh] = f.v[(k + 1) % 3], outside[nh] = g, outside_edge[nh] = f.back[k], ++nh;
             }
         }
         // One cycle: every vertex starts at most one edge, and following them visits them all.
-        if (nh < 3 || n_free_ + n_visible + (kMaxFaces - nf_) < nh) return false;
-        int start_of[kMaxVertices], end_of[kMaxVertices];  // the horizon edge leaving / reaching a vertex
+        if (nh < 3 || n_free_ + n_visible + (kMaxF - nf_) < nh) return false;
+        int start_of[kMaxV], end_of[kMaxV];  // the horizon edge leaving / reaching a vertex
         for (int i = 0; i < nh; ++i) start_of[from[i]] = start_of[to[i]] = end_of[from[i]] = end_of[to[i]] = -1;
         for (int i = 0; i < nh; ++i) {
             if (start_of[from[i]] != -1 || end_of[to[i]] != -1) return false;
@@ -429,7 +434,7 @@ private:
         // The new faces, checked before anything changes.
         const int xi = nv_;
         verts_[xi] = x;
-        Slots<Plane, kMaxVertices> fresh;
+        Slots<Plane, kMaxV> fresh;
         for (int i = 0; i < nh; ++i) {
             if (!make_plane(from[i], to[i], xi, fresh[i])) return false;
             if (!(dot(fresh[i].n, interior_) < fresh[i].off)) return false;
@@ -438,7 +443,7 @@ private:
         // The new faces take the visible faces' slots, then freed ones, then the end. A visible
         // region with vertices inside it (they leave the polytope) has fewer rim edges than faces
         // (n + 2 - 2 i for n faces around i inner vertices): its slots left over are freed.
-        int slot[kMaxVertices];
+        int slot[kMaxV];
         for (int i = 0; i < nh; ++i) slot[i] = i < n_visible ? vis[i] : (n_free_ > 0 ? free_[--n_free_] : nf_++);
         for (int h = nh; h < n_visible; ++h) {
             free_[n_free_++] = vis[h];
@@ -559,19 +564,19 @@ private:
     Vec3 interior_;
     Vec3 upper_n_;
     Vertex upper_x_;
-    Slots<Vertex, kMaxVertices> verts_;
+    Slots<Vertex, kMaxV> verts_;
     // Face i, its ranking distance (faces_[i].d) and its plane, kept apart so that the scans
     // over every face read them contiguously.
-    Slots<Face, kMaxFaces> faces_;
-    Slots<double, kMaxFaces> key_;
-    Slots<Plane, kMaxFaces> plane_;
+    Slots<Face, kMaxF> faces_;
+    Slots<double, kMaxF> key_;
+    Slots<Plane, kMaxF> plane_;
     // mark_[i] == 2 epoch_ + 1: face i sees the point being added; 2 epoch_: it does not.
-    Slots<uint32_t, kMaxFaces> mark_;
+    Slots<uint32_t, kMaxF> mark_;
     uint32_t epoch_ = 0;
-    int free_[kMaxFaces];  // slots of faces that left the polytope (key_ INFINITY, never reached)
-    int16_t near_[kMaxFaces];        // the faces that can come up as the least (keep_near)
-    int16_t written_[kMaxVertices];  // the slots the last expansion wrote
-    uint32_t listed_[kMaxFaces];     // == listing_: written by the last expansion
+    int free_[kMaxF];  // slots of faces that left the polytope (key_ INFINITY, never reached)
+    int16_t near_[kMaxF];        // the faces that can come up as the least (keep_near)
+    int16_t written_[kMaxV];  // the slots the last expansion wrote
+    uint32_t listed_[kMaxF];     // == listing_: written by the last expansion
     uint32_t listing_ = 0;
     int n_near_ = -1, n_written_ = 0;  // n_near_ -1: near_ not kept yet
     int n_free_ = 0;

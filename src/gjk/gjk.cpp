@@ -89,8 +89,6 @@ inline bool settled(double vv, double lower_sq, double size_sq, double margin, d
 
 // The floor of settled() for a pair support: exact supports (points, segments, boxes, small
 // hulls) on both sides, or not.
-template <class S>
-constexpr bool exact_support = !std::is_same_v<S, GenericSupport>;
 template <class Pair>
 constexpr double settle_floor =
     exact_support<decltype(Pair::sa)>&& exact_support<decltype(Pair::sb)> ? 0x1p-46 : 0x1p-40;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <type_traits>
 
 #include "gjk/core_distance.hpp"
@@ -116,7 +117,25 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // The tetrahedron alone takes 6 to 12 support calls.
         const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-            return Expander<std::decay_t<decltype(pair)>>(pair, c.center_offset, budget, &held).run(tolerance);
+            using P = std::decay_t<decltype(pair)>;
+            CoreDepth d = Expander<P>(pair, c.center_offset, budget, &held).run(tolerance);
+            if constexpr (!(exact_support<decltype(P::sa)> && exact_support<decltype(P::sb)>)) {
+                // A deep overlap on a cylinder's side can use up the 128 steps: support points
+                // along nearly horizontal normals fall on the top or the bottom rim as rounding
+                // decides, and each refinement in angle needs a vertex on both. Such a pair starts
+                // again with room for 252 steps, on the heap (about 100 kB: too much for a
+                // stack); a caller's max_iterations still bounds the calls. Rare, so the repeated
+                // steps cost little overall.
+                if (d.termination == Termination::MaxIterations && max_iterations > budget) {
+                    const uint32_t large = max_iterations < 252 ? max_iterations : 252;
+                    const auto expander =
+                        std::make_unique<Expander<P, kMaxVerticesLarge>>(pair, c.center_offset, large, &held);
+                    const uint32_t first = d.iterations;
+                    d = expander->run(tolerance);
+                    d.iterations += first;
+                }
+            }
+            return d;
         });
         depth.iterations += c.iterations;
         total = depth.depth + margin;

@@ -12,10 +12,11 @@ namespace kairos {
 namespace epa_detail {
 
 inline constexpr double kEps = 2.220446049250313e-16;
+// Vertex capacities: the expansion's usual one (128 steps), and the large one a curved pair's
+// expansion retries with when it used up the usual one (252 steps: the most uint8_t indices allow).
 inline constexpr int kMaxVertices = 4 + 128;
-inline constexpr int kMaxFaces = 2 * kMaxVertices;
+inline constexpr int kMaxVerticesLarge = 256;
 inline constexpr int kNearFrom = 24;  // faces from which the expansion keeps its near faces apart
-static_assert(kMaxVertices <= 256 && kMaxFaces <= 32767);  // uint8_t vertex and int16_t face indices
 
 struct Vertex {
     Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)

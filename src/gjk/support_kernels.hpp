@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 #include "math/math.hpp"
 #include "shapes/shape.hpp"
@@ -56,6 +57,11 @@ struct GenericSupport {
     const Shape* s;
     Vec3 operator()(Vec3 d) const { return support(*s, d); }
 };
+
+// Supports whose points are exact (points, segments, boxes, small hulls); curved and general
+// shapes go through GenericSupport.
+template <class S>
+constexpr bool exact_support = !std::is_same_v<S, GenericSupport>;
 
 // B's local frame in A's: x -> r x + t, with r = Ra^T Rb and t = Ra^T (tb - ta). The translation
 // difference is taken before rotating, so shapes far from the world origin keep their relative
