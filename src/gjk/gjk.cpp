@@ -330,22 +330,25 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
 // Both answers are points of A - B with their witness points: the nearer one is kept, with the
 // first run's termination and the calls of both. One rerun at most; rare.
 template <class Pair>
-LocalDistance distance_query(const Pair& pair, double margin, double tolerance, uint32_t max_iterations,
-                             HeldTetrahedron* held = nullptr) {
-    LocalDistance l = distance_loop(pair, margin, tolerance, max_iterations, held);
-    if (l.lengthened && !l.intersecting) [[unlikely]] {
-        const Termination t = l.termination;
-        uint32_t calls = l.iterations, cap = l.iterations;
-        for (int k = 0; k < 4 && cap > 1; ++k) {
-            --cap;
-            const LocalDistance e = distance_loop(pair, margin, tolerance, cap);
-            calls += e.iterations;
-            if (!e.intersecting && e.core < l.core) l = e;
-            if (!e.lengthened) break;
-        }
-        l.termination = t;
-        l.iterations = calls;
+[[gnu::noinline, gnu::cold]] void rerun_shorter(const Pair& pair, double margin, double tolerance, LocalDistance& l) {
+    const Termination t = l.termination;
+    uint32_t calls = l.iterations, cap = l.iterations;
+    for (int k = 0; k < 4 && cap > 1; ++k) {
+        --cap;
+        const LocalDistance e = distance_loop(pair, margin, tolerance, cap);
+        calls += e.iterations;
+        if (!e.intersecting && e.core < l.core) l = e;
+        if (!e.lengthened) break;
     }
+    l.termination = t;
+    l.iterations = calls;
+}
+template <class Pair>
+[[gnu::always_inline]] inline LocalDistance distance_query(const Pair& pair, double margin, double tolerance,
+                                                           uint32_t max_iterations, HeldTetrahedron* held = nullptr) {
+    LocalDistance l = distance_loop(pair, margin, tolerance, max_iterations, held);
+    if (l.lengthened && !l.intersecting) [[unlikely]]
+        rerun_shorter(pair, margin, tolerance, l);
     return l;
 }
 

@@ -119,9 +119,8 @@ inline double pair_scale(Vec3 a, Vec3 b) {
 // the six axes bound every support point's coordinates, so their largest sets the scale then.
 // Only pairs whose first points all lie within 2^-100 of the origin pay the six calls.
 template <class Pair>
-double first_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x = {}) {
+[[gnu::noinline]] double first_scale_slow(const Pair& pair, double near) {
     auto mx = [](double p, double q) { return q > p ? q : p; };
-    const double near = mx(max_abs(a), mx(max_abs(b), max_abs(x)));
     const double sc = pair_scale({near, 0, 0}, {});
     if (!(sc > 1)) return sc;
     double big = near;
@@ -132,6 +131,14 @@ double first_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x = {}) {
         big = mx(big, mx(max_abs(pa), max_abs(pb)));
     }
     return pair_scale({big, 0, 0}, {});
+}
+// Inline: the first points of pairs of ordinary size decide it with two comparisons.
+template <class Pair>
+[[gnu::always_inline]] inline double first_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x = {}) {
+    auto mx = [](double p, double q) { return q > p ? q : p; };
+    const double near = mx(max_abs(a), mx(max_abs(b), max_abs(x)));
+    if (near >= 0x1p-100 && near <= 0x1p100) return 1;  // pair_scale's answer for it
+    return first_scale_slow(pair, near);
 }
 
 // Brings a loop to the scale `sc` after its first support call: the support functor scales every
