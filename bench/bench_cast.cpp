@@ -3,20 +3,71 @@
 // (btSubsimplexConvexCast) and FCL (continuousCollide, translation, conservative advancement,
 // GST_INDEP) on the same fixed random sets, in one program and one run. Writes CSV rows: median ns
 // per cast, mean iterations, and the time-of-impact, normal-angle and contact-point errors
-// (median, max) against the long double oracle. Bullet's float build runs in bench_cast_bullet32.
+// (median, max) against the long double oracle; and the public kairos_shape_cast at its defaults
+// (row kairos_capi) beside the core. Bullet's float build runs in bench_cast_bullet32.
 //   bench_cast [out.csv]      (default: standard output)
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
 #include "cast_bench_common.hpp"
 #include "cast_peer_bullet.hpp"
 #include "cast_peer_fcl.hpp"
+#include "capi_poses.hpp"
 #include "casts/cast.hpp"
+#include "kairos/kairos.h"
 
 using namespace cast_bench;
+
+namespace {
+
+struct ShapeRelease {
+    void operator()(kairos_shape* s) const { kairos_shape_release(s); }
+};
+using CShape = std::unique_ptr<kairos_shape, ShapeRelease>;
+
+// The C API's shape for a scenario's body (the kinds the scenarios use).
+CShape c_shape(const cast_oracle::Body& b) {
+    using cast_oracle::Kind;
+    kairos_shape* out = nullptr;
+    int32_t status = KAIROS_ERROR_INVALID_ARGUMENT;
+    const double r = double(b.radius), h = double(b.half);
+    switch (b.kind) {
+        case Kind::Sphere:
+            status = kairos_shape_sphere(r, &out);
+            break;
+        case Kind::Box:
+            status = kairos_shape_box({double(b.half_extents.x), double(b.half_extents.y), double(b.half_extents.z)}, &out);
+            break;
+        case Kind::Capsule:
+            status = kairos_shape_capsule(r, h, &out);
+            break;
+        case Kind::Cylinder:
+            status = kairos_shape_cylinder(r, h, &out);
+            break;
+        case Kind::Cone:
+            status = kairos_shape_cone(r, h, &out);
+            break;
+        case Kind::Hull: {
+            std::vector<kairos_vec3> p;
+            for (const auto& v : b.verts) p.push_back({double(v.x), double(v.y), double(v.z)});
+            status = kairos_shape_convex_hull(p.data(), p.size(), &out);
+            break;
+        }
+        default:
+            break;
+    }
+    if (status != KAIROS_OK) {
+        std::fprintf(stderr, "bench_cast: the C API rejected a shape: %s\n", kairos_last_error());
+        std::abort();
+    }
+    return CShape(out);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     FILE* out = open_output(argc, argv);
@@ -37,6 +88,35 @@ int main(int argc, char** argv) {
             };
             const Timing ns = time_casts(one, set.size());
             csv_row(out, sc.name, "kairos", tol, ns, summarize(set, res, true, true, true, tol));
+        }
+
+        // The same casts through the public C API at its default settings (tolerance 1e-10):
+        // argument checks, quaternion to matrix, result conversion included.
+        {
+            std::vector<CShape> ca, cb;
+            std::vector<kairos_pose> pa, pb;
+            for (const Item& x : set) {
+                ca.push_back(c_shape(x.a.body));
+                cb.push_back(c_shape(x.b.body));
+                pa.push_back(c_pose(x.c.pa));
+                pb.push_back(c_pose(x.c.pb));
+            }
+            auto one = [&](size_t i) {
+                const Item& x = set[i];
+                kairos_cast_result r;
+                const int32_t status =
+                    kairos_shape_cast(ca[i].get(), &pa[i], {x.c.ta.x, x.c.ta.y, x.c.ta.z}, cb[i].get(), &pb[i],
+                                      {x.c.tb.x, x.c.tb.y, x.c.tb.z}, nullptr, &r);
+                benchmark::DoNotOptimize(status);
+                res[i] = kairos::CastResult{};
+                res[i].hit = status == KAIROS_OK && r.hit;
+                res[i].toi = r.toi;
+                res[i].point = {r.point.x, r.point.y, r.point.z};
+                res[i].normal = {r.normal.x, r.normal.y, r.normal.z};
+                res[i].iterations = r.iterations;
+            };
+            const Timing ns = time_casts(one, set.size());
+            csv_row(out, sc.name, "kairos_capi", 1e-10, ns, summarize(set, res, true, true, true, 1e-10));
         }
 
         // Bullet f64: shapes made beforehand; a new solver and cast object per query.

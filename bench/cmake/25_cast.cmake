@@ -17,7 +17,7 @@ if(KAIROS_CB_FCL_FOUND AND KAIROS_CB_BULLET64_FOUND AND KAIROS_CB_BULLET64_COLLI
     # Peers' headers as system headers; FCL's pkg-config -std=c++11 is left out on purpose.
     target_include_directories(bench_cast SYSTEM PRIVATE ${KAIROS_CB_FCL_INCLUDE_DIRS} ${KAIROS_CB_BULLET64_INCLUDE_DIRS})
     target_compile_definitions(bench_cast PRIVATE BT_USE_DOUBLE_PRECISION)
-    target_link_libraries(bench_cast PRIVATE kairos_core benchmark::benchmark ${KAIROS_CB_FCL_LINK_LIBRARIES}
+    target_link_libraries(bench_cast PRIVATE kairos::kairos kairos_core benchmark::benchmark ${KAIROS_CB_FCL_LINK_LIBRARIES}
                                              ${KAIROS_CB_BULLET64_COLLISION} ${KAIROS_CB_BULLET64_MATH})
     kairos_warnings(bench_cast)
 else()
