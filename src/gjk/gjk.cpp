@@ -254,6 +254,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     s.closest_points(out.point_a, out.point_b);
     out.point_a = inv * out.point_a;
     out.point_b = inv * out.point_b;
+    if (intersecting && gjk_detail::common_point_on_b(s)) out.point_a = out.point_b + out.v;
     if (held != nullptr && intersecting && s.bits == 15u) {
         for (int i = 0; i < 4; ++i) held->a[i] = inv * s.pa[i], held->b[i] = inv * s.pb[i];
         held->valid = true;

@@ -1217,6 +1217,87 @@ TEST(GjkEdges, NeedleAcrossAThinSlabGivesACommonPointNearBoth) {
     kairos_shape_release(slab);
 }
 
+// A flat hull 1e5 .. 3e9 long (points on a line and one off it: a triangle with no thickness)
+// crossed by a cone or a box 2000 long, centred on the triangle: they intersect by construction.
+// The tetrahedron of A - B that holds the origin spans the hull's length and is as wide as the
+// small shape, so its coordinates carry errors of 1e-7 even in long double; summed over the
+// hull's vertices they put the common point 1.4e3 along the hull, out of a cone of radius 10
+// (found by fuzz_queries). Truth: the small shape by its closed form in its own frame, the
+// triangle by its plane and edges.
+TEST(GjkEdges, HugeFlatHullCrossedByASmallShapeGivesACommonPointInBoth) {
+    const uint64_t seed = 20261128;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> gauss;
+    std::uniform_real_distribution<double> unit01(0, 1);
+    const double radius = 10, half = 1000;
+    kairos_shape *cone = nullptr, *box = nullptr;
+    ASSERT_EQ(kairos_shape_cone(radius, half, &cone), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_box({radius, radius, half}, &box), KAIROS_OK);
+    double worst_small = 0, worst_hull = 0;
+    int cases = 0, intersecting = 0;
+    for (int i = 0; i < 300; ++i) {
+        const double length = std::pow(10.0, 5 + 4.5 * unit01(rng));
+        const V dir = unit({gauss(rng), gauss(rng), gauss(rng)});
+        V side = {gauss(rng), gauss(rng), gauss(rng)};
+        side = unit(side - dot(side, dir) * dir);
+        const V normal{dir.y * side.z - dir.z * side.y, dir.z * side.x - dir.x * side.z, dir.x * side.y - dir.y * side.x};
+        // Ten points on the line, its two ends first, and one beside it: the triangle's corners.
+        std::vector<kairos_vec3> points = {kv(-0.5 * length * dir), kv(0.5 * length * dir), kv(0.2 * length * side)};
+        for (int k = 0; k < 8; ++k) points.push_back(kv(length * (unit01(rng) - 0.5) * dir));
+        kairos_shape* hull = nullptr;
+        ASSERT_EQ(kairos_shape_convex_hull(points.data(), points.size(), &hull), KAIROS_OK);
+        const kairos_pose hull_pose{{4 * gauss(rng), 4 * gauss(rng), 4 * gauss(rng)}, {0, 0, 0, 1}};
+        // The small shape's centre on the triangle, within 1e3 of the long edge, turned anyhow.
+        const V centre = fromk(hull_pose.position) + (0.4 * length * (2 * unit01(rng) - 1)) * dir +
+                         (1e3 * unit01(rng)) * side;
+        const Rot turn = make_rot({gauss(rng), gauss(rng), gauss(rng)}, 6.283185307179586 * unit01(rng));
+        const kairos_pose small_pose{kv(centre), {turn.q[0], turn.q[1], turn.q[2], turn.q[3]}};
+        const bool is_cone = i % 2 == 0;
+        kairos_shape* small = is_cone ? cone : box;
+        // How far p lies outside the small shape (its frame: the cone's apex at +half on z).
+        auto outside_small = [&](V p) {
+            const V l = apply_t(turn, p - centre);
+            const double rho = std::sqrt(l.x * l.x + l.y * l.y);
+            if (!is_cone) return std::max({std::fabs(l.x) - radius, std::fabs(l.y) - radius, std::fabs(l.z) - half});
+            const double slant = (rho * 2 * half + (l.z - half) * radius) / std::sqrt(4 * half * half + radius * radius);
+            return std::max({slant, -half - l.z, l.z - half});
+        };
+        // How far p lies off the triangle: off its plane, or beyond its long edge or the two others.
+        auto outside_hull = [&](V p) {
+            const V q = p - fromk(hull_pose.position);
+            const double s = dot(q, side), t = dot(q, dir);
+            const double beyond = std::max({-s, s - 0.2 * length * (1 - 2 * std::fabs(t) / length), std::fabs(t) - 0.5 * length});
+            return std::max(std::fabs(dot(q, normal)), beyond);
+        };
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " case " << i << " length " << length);
+        for (int order = 0; order < 2; ++order) {
+            kairos_distance_result r{};
+            ASSERT_EQ(order == 0 ? kairos_distance(hull, &hull_pose, small, &small_pose, nullptr, &r)
+                                 : kairos_distance(small, &small_pose, hull, &hull_pose, nullptr, &r),
+                      KAIROS_OK);
+            ++cases;
+            if (!r.intersecting) {
+                ADD_FAILURE() << "order " << order << ": apart by " << r.distance;
+                continue;
+            }
+            ++intersecting;
+            const V p = fromk(r.point_a);
+            const double out_small = outside_small(p), out_hull = outside_hull(p);
+            worst_small = std::max(worst_small, out_small / half);
+            worst_hull = std::max(worst_hull, out_hull / length);
+            EXPECT_LE(out_small, 1e-9 * half) << "order " << order << " termination " << r.termination;
+            EXPECT_LE(out_hull, 1e-9 * length) << "order " << order << " termination " << r.termination;
+        }
+        kairos_shape_release(hull);
+    }
+    std::printf("flat hull across a small shape: %d of %d intersecting, worst point outside the small shape %.3g "
+                "of its half length, outside the hull %.3g of its length\n",
+                intersecting, cases, worst_small, worst_hull);
+    EXPECT_EQ(intersecting, cases);
+    kairos_shape_release(box);
+    kairos_shape_release(cone);
+}
+
 // A ball whose centre lies a small gap from a flat ellipse (a sphere mapped by a singular-looking
 // diagonal, 1e-19 thick), the centre over the ellipse: the signed distance is the gap less the
 // ball's radius, in both orders. The cores' GJK axis came out 3e-7 off the ellipse's normal, and

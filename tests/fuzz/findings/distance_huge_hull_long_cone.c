@@ -1,6 +1,7 @@
-/* Open fuzz finding (2026-11-27): kairos_distance of a hull about 1e9 across and a cone of
- * radius 10, half height 1000, near its centre: intersecting, with point_b outside the cone.
- * Prints the answers; exits 1 while point_b lies outside B by more than 1e-6 of B's size. */
+/* Fuzz finding (2026-11-27, fixed 2026-11-28; README.md): kairos_distance of a hull about 1e9
+ * across and a cone of radius 10, half height 1000, near its centre: intersecting, with the
+ * common point 1.4e3 outside the cone. Prints the answers; exits 1 if point_b lies outside B by
+ * more than 1e-6 of B's size. Build: cc -I include X.c -lkairos -lm */
 #include <math.h>
 #include <stdio.h>
 #include "kairos/kairos.h"
