@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
@@ -201,24 +202,34 @@ std::vector<Query>& queries(Scenario sc) {
 
 // ---- Distance ----------------------------------------------------------------------------------
 
-// Median and largest |distance - truth| over a distance scenario's pairs with a truth, as
-// counters (the accuracy each library's time buys); NAN answers count in "failed".
-template <class Distance>
-void distance_errors(benchmark::State& state, const std::vector<Query>& q, Distance&& distance_of) {
+// Median and largest error over pairs 0 .. n-1 as counters (the accuracy each library's time
+// buys). error_of(i): the pair's absolute error, NAN when the library gave no answer (counted in
+// "failed"), nullopt when the pair has no truth.
+template <class ErrorOf>
+void error_counters(benchmark::State& state, size_t n, ErrorOf&& error_of) {
     std::vector<double> err;
     int failed = 0;
-    for (const Query& x : q) {
-        if (std::isnan(x.truth)) continue;
-        const double d = distance_of(x);
-        if (std::isnan(d))
+    for (size_t i = 0; i < n; ++i) {
+        const std::optional<double> e = error_of(i);
+        if (!e) continue;
+        if (std::isnan(*e))
             ++failed;
         else
-            err.push_back(std::fabs(d - x.truth));
+            err.push_back(*e);
     }
     std::sort(err.begin(), err.end());
     state.counters["err_median"] = err.empty() ? NAN : err[err.size() / 2];
     state.counters["err_max"] = err.empty() ? NAN : err.back();
     state.counters["failed"] = failed;
+}
+
+// |distance - truth| over a distance scenario's pairs with a truth (error_counters).
+template <class Distance>
+void distance_errors(benchmark::State& state, const std::vector<Query>& q, Distance&& distance_of) {
+    error_counters(state, q.size(), [&](size_t i) -> std::optional<double> {
+        if (std::isnan(q[i].truth)) return std::nullopt;
+        return std::fabs(distance_of(q[i]) - q[i].truth);
+    });
 }
 
 // tolerance: 10^-range(1) (the default 1e-10, and coarser ones to compare at a peer's accuracy).
@@ -407,24 +418,12 @@ Overlap& overlapping(Scenario sc) {
     return o;
 }
 
-// Median and largest |depth - truth| over the scenario's pairs (NAN: no answer), as counters; a
-// pair a library fails on (no result, an exception) counts in "failed".
+// |depth - truth| over the scenario's pairs (error_counters); NAN depths (no answer, an
+// exception) count in "failed".
 template <class Depth>
 void depth_errors(benchmark::State& state, const Overlap& o, Depth&& depth_of) {
-    std::vector<double> err;
-    int failed = 0;
-    for (size_t i = 0; i < o.q.size(); ++i) {
-        const double d = depth_of(o.q[i]);
-        if (std::isnan(d)) {
-            ++failed;
-            continue;
-        }
-        err.push_back(std::fabs(d - o.depth[i]));
-    }
-    std::sort(err.begin(), err.end());
-    state.counters["err_median"] = err.empty() ? NAN : err[err.size() / 2];
-    state.counters["err_max"] = err.empty() ? NAN : err.back();
-    state.counters["failed"] = failed;
+    error_counters(state, o.q.size(),
+                   [&](size_t i) -> std::optional<double> { return std::fabs(depth_of(o.q[i]) - o.depth[i]); });
 }
 
 // A peer's depth query timed over the scenario's pairs in turn, then its errors (depth_errors).
