@@ -256,7 +256,8 @@ TEST(GjkCurvedContact, SliverHoldingTheOriginIsFull) {
 // reproduced its point lay farther, so 7 % of the answers were off by up to 8e-9 of the size
 // (8 times the gap at 1e-9) with an axis up to 90 degrees from the normal. Checked: the distance
 // against the gap, the witness points the distance apart, and the answer's axis by its own
-// certificate: the two shapes' supports along it must be the gap apart, within what the axis can
+// certificate: the two shapes' supports along it (tests/support/gjk_peer_shapes.hpp, not the
+// library's) must be the gap apart, within what the axis can
 // carry: along a contact line the estimate v = gap n + dz e_z has |v| within tolerance of the gap
 // for any |dz| <= sqrt(2 tol) gap, so the axis tilts by up to sqrt(2 tol) radians (1.4e-5 at the
 // default 1e-10; 2.5e-6 seen), plus the rounding tilt eps size / distance, times the size.
@@ -283,8 +284,15 @@ TEST(GjkCurvedContact, ParallelCylindersNearALineContact) {
             const Transform xa = make_transform({u(rng), u(rng), u(rng)}, qa);
             const Transform xb = make_transform(xa.apply({rho * std::cos(phi), rho * std::sin(phi), dz}), qa * about);
             const double truth = gap * size;
+            // The same cylinders for the axis certificate, by the test-side supports.
+            peer::Spec sa, sb;
+            sa.kind = sb.kind = peer::Kind::Cylinder;
+            sa.a = ra, sa.b = ha, sa.pose = xa;
+            sb.a = rb, sb.b = hb, sb.pose = xb;
             for (int order = 0; order < 2; ++order) {
                 const Shape& p = order ? static_cast<const Shape&>(cb) : ca;
+                const peer::Spec& sp = order ? sb : sa;
+                const peer::Spec& sq = order ? sa : sb;
                 const Shape& q = order ? static_cast<const Shape&>(ca) : cb;
                 const Transform& xp = order ? xb : xa;
                 const Transform& xq = order ? xa : xb;
@@ -292,8 +300,7 @@ TEST(GjkCurvedContact, ParallelCylindersNearALineContact) {
                 ++cases;
                 rounding_stops += r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress;
                 const Vec3 n = r.axis;
-                const double along = dot(n, xq.apply(support(q, xq.to_local_direction(-n))) -
-                                                xp.apply(support(p, xp.to_local_direction(n))));
+                const double along = dot(n, peer::world_support(sq, -n) - peer::world_support(sp, n));
                 const double distance_error = std::fabs(r.distance - truth) / size;
                 const double axis_error = std::fabs(along - truth) / size;
                 const double axis_allowed = 2 * std::sqrt(2 * 1e-10) + 1e-15 * size / truth;
