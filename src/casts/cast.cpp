@@ -11,9 +11,11 @@
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace kairos {
 namespace {
@@ -23,17 +25,33 @@ using gjk_detail::Simplex;
 // Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
 // current), then the backup pass: the subset with positive determinants whose affine closest
 // point is nearest x.
+// The first pass with `all` known at compile time (as add() runs it): the first valid subset.
+template <unsigned All>
+bool first_valid_proper(Simplex& s) {
+    constexpr auto& table = gjk_detail::kSubsets;
+    return [&]<unsigned... T>(std::integer_sequence<unsigned, T...>) {
+        auto try_one = [&](auto sc) {
+            constexpr unsigned sub = decltype(sc)::value;
+            if constexpr (sub == 0 || sub == 15u) {  // decided geometrically above
+                return false;
+            } else {
+                if (!s.valid_t<sub, All>()) return false;
+                s.set_from_subset_t<sub>();
+                return true;
+            }
+        };
+        return (try_one(std::integral_constant<unsigned, table.subsets[All][T]>{}) || ...);
+    }(std::make_integer_sequence<unsigned, table.count[All]>{});
+}
+
 Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
+    using Fn = bool (*)(Simplex&);
+    static constexpr auto first = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+        return std::array<Fn, 16>{&first_valid_proper<M>...};
+    }(std::make_integer_sequence<unsigned, 16>{});
+    if (first[all & 15u](s)) return Simplex::Outcome::Reduced;
     const auto& table = gjk_detail::kSubsets;
     const unsigned n_sub = table.count[all];
-    for (unsigned t = 1; t < n_sub; ++t) {
-        const unsigned sub = table.subsets[all][t];
-        if (sub == 15u) continue;  // decided geometrically above
-        if (s.valid(sub, all)) {
-            s.set_from_subset(sub);
-            return Simplex::Outcome::Reduced;
-        }
-    }
     double best = INFINITY;
     unsigned best_s = 0;
     for (unsigned t = 1; t < n_sub; ++t) {

@@ -512,31 +512,32 @@ struct Simplex {
     // edge y_k - y_m before the dot product keeps the digits that the difference of two whole dot
     // products y_i.y_k and y_i.y_m loses when points cluster (curved surfaces near convergence:
     // points 1e-5 apart gave closest points off by 1e-4 relative with the classical form).
-    void compute_subset(unsigned s) {
-        Vec3 us{};
-        for (unsigned r = s; r; r &= r - 1) {
-            const int m = std::countr_zero(r);
-            const unsigned x = s & ~(1u << m);
-            const double d = dot(u[x], y[std::countr_zero(x)] - y[m]);
-            det[s][m] = d;
-            us += d * y[m];
-        }
-        u[s] = us;
-    }
-
-    // Recomputes every cached quantity of the points in `all` (after they were moved).
-    void recompute_all(unsigned all) {
-        for (unsigned r = all; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
+    // Recomputes every cached quantity of the points in `all` (after they were moved): the same
+    // arithmetic, in the same order, as add() on those points.
+    template <unsigned All>
+    void recompute_all_t() {
+        for_bits<All>([&](auto ic) {
+            constexpr int i = decltype(ic)::value;
             norm_sq[i] = dot(y[i], y[i]);
             det[1u << i][i] = 1;
             u[1u << i] = y[i];
-        }
-        const unsigned n_sub = kSubsets.count[all];
-        for (unsigned t = 1; t < n_sub; ++t) {
-            const unsigned s = kSubsets.subsets[all][t];
-            if (kBitCount[s] >= 2) compute_subset(s);
-        }
+        });
+        [&]<unsigned... T>(std::integer_sequence<unsigned, T...>) {
+            ((std::popcount(kSubsets.subsets[All][T]) >= 2 ? compute_pair_or_more_t<kSubsets.subsets[All][T]>()
+                                                         : void()),
+             ...);
+        }(std::make_integer_sequence<unsigned, kSubsets.count[All]>{});
+    }
+    template <unsigned S>
+    void compute_pair_or_more_t() {
+        if constexpr (std::popcount(S) >= 2) compute_subset_t<S>();
+    }
+    void recompute_all(unsigned all) {
+        using Fn = void (Simplex::*)();
+        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+            return std::array<Fn, 16>{&Simplex::recompute_all_t<M>...};
+        }(std::make_integer_sequence<unsigned, 16>{});
+        (this->*table[all & 15u])();
     }
 
     bool valid(unsigned s, unsigned all) const {
