@@ -5,6 +5,7 @@
 // After a clip the simplex is kept and re-expressed about the new ray point; restarting from the
 // last support point (docs/algorithms.md §3) took more iterations and time in bench_cast.
 #include "casts/cast.hpp"
+#include "casts/rebuild.hpp"
 #include "gjk/closed_forms.hpp"
 #include "gjk/gjk.hpp"
 #include "gjk/penetration.hpp"
@@ -21,100 +22,7 @@ namespace kairos {
 namespace {
 using namespace kernels;
 using gjk_detail::Simplex;
-
-// Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
-// current), then the backup pass: the subset with positive determinants whose affine closest
-// point is nearest x.
-// The first pass with `all` known at compile time (as add() runs it): the first valid subset.
-template <unsigned All>
-bool first_valid_proper(Simplex& s) {
-    constexpr auto& table = gjk_detail::kSubsets;
-    return [&]<unsigned... T>(std::integer_sequence<unsigned, T...>) {
-        auto try_one = [&](auto sc) {
-            constexpr unsigned sub = decltype(sc)::value;
-            if constexpr (sub == 0 || sub == 15u) {  // decided geometrically above
-                return false;
-            } else {
-                if (!s.valid_t<sub, All>()) return false;
-                s.set_from_subset_t<sub>();
-                return true;
-            }
-        };
-        return (try_one(std::integral_constant<unsigned, table.subsets[All][T]>{}) || ...);
-    }(std::make_integer_sequence<unsigned, table.count[All]>{});
-}
-
-Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
-    using Fn = bool (*)(Simplex&);
-    static constexpr auto first = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-        return std::array<Fn, 16>{&first_valid_proper<M>...};
-    }(std::make_integer_sequence<unsigned, 16>{});
-    if (first[all & 15u](s)) return Simplex::Outcome::Reduced;
-    const auto& table = gjk_detail::kSubsets;
-    const unsigned n_sub = table.count[all];
-    double best = INFINITY;
-    unsigned best_s = 0;
-    for (unsigned t = 1; t < n_sub; ++t) {
-        const unsigned sub = table.subsets[all][t];
-        if (sub == 15u) continue;
-        bool positive = true;
-        double sum = 0;
-        for (unsigned r = sub; r; r &= r - 1) {
-            const double d = s.det[sub][std::countr_zero(r)];
-            if (!(d > 0)) positive = false;  // NaN fails too
-            sum += d;
-        }
-        if (!positive) continue;
-        Vec3 p{};
-        for (unsigned r = sub; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
-            p += (s.det[sub][i] / sum) * s.y[i];
-        }
-        const double n2 = dot(p, p);
-        if (n2 < best) {
-            best = n2;
-            best_s = sub;
-        }
-    }
-    if (best_s == 0) return Simplex::Outcome::Failed;
-    s.set_from_subset(best_s);
-    return Simplex::Outcome::Backup;
-}
-
-// After a rebuild: a flat or thin tetrahedron (Simplex::thickness; add() applies the same test)
-// is replaced by the best proper sub-simplex (a flat one says nothing about x, a thin one gives
-// poor coordinates for the contact point).
-Simplex::Outcome check_full(Simplex& s) {
-    if (s.thickness() == Simplex::Thickness::Solid) return Simplex::Outcome::Full;
-    return johnson_proper(s, 15u);
-}
-
-// Re-expresses the simplex about the ray point x: y_i = x - (pa_i - pb_i) for its points, plus the
-// point (a, b) when `add` is set; recomputes every dot product and determinant, and runs Johnson's
-// test over all subsets (the closest sub-simplex need not hold the newest point once x has moved).
-Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
-    unsigned all = s.bits;
-    if (add) {
-        const int slot = std::countr_zero(~all & 15u);
-        s.pa[slot] = a;
-        s.pb[slot] = b;
-        all |= 1u << slot;
-    }
-    // y_i = x - p_i with p_i = a_i - b_i written exactly as the loop writes w, so a repeated
-    // support point compares equal; then every norm, determinant and cached sum of the points.
-    for (unsigned r = all; r; r &= r - 1) {
-        const int i = std::countr_zero(r);
-        s.y[i] = x - (s.pa[i] - s.pb[i]);
-    }
-    s.recompute_all(all);
-    s.last_all = all;
-    if (all == 15u && s.origin_in_tetrahedron()) {
-        s.bits = 15u;
-        s.v = Vec3{};
-        return check_full(s);
-    }
-    return johnson_proper(s, all);
-}
+using cast_detail::rebuild;
 
 // C = one shape (ray cast): p = s(d); b is zero. `scale` as in PairSupport.
 template <class S>
