@@ -12,11 +12,9 @@
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
-#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace kairos {
 namespace {

@@ -16,9 +16,6 @@ namespace kairos::cast_detail {
 
 using gjk_detail::Simplex;
 
-// Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
-// current), then the backup pass: the subset with positive determinants whose affine closest
-// point is nearest x.
 // The first pass with `all` known at compile time (as add() runs it): the first valid subset.
 template <unsigned All>
 bool first_valid_proper(Simplex& s) {
@@ -38,6 +35,9 @@ bool first_valid_proper(Simplex& s) {
     }(std::make_integer_sequence<unsigned, table.count[All]>{});
 }
 
+// Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
+// current), then the backup pass: the subset with positive determinants whose affine closest
+// point is nearest x.
 inline Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
     using Fn = bool (*)(Simplex&);
     static constexpr auto first = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {

@@ -540,16 +540,6 @@ struct Simplex {
         (this->*table[all & 15u])();
     }
 
-    bool valid(unsigned s, unsigned all) const {
-        for (unsigned r = s; r; r &= r - 1)
-            if (!(det[s][std::countr_zero(r)] > 0)) return false;
-        for (unsigned r = all & ~s; r; r &= r - 1) {
-            const int j = std::countr_zero(r);
-            if (!(det[s | (1u << j)][j] <= 0)) return false;
-        }
-        return true;
-    }
-
     // How far a tetrahedron's signed volume can be trusted. Flat: thinner than 1e-10 of its
     // longest edge from y0 (|vol| <= 1e-10 L A, A the largest of the faces' parallelograms at y0):
     // the volume may be rounding noise (coplanar support points, common on flat faces, disks and
