@@ -38,6 +38,7 @@
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/continuous_collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -45,6 +46,7 @@
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btContinuousConvexCollision.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
@@ -70,12 +72,12 @@ constexpr double kCaseTimeout = 3.0;     // seconds per case before it counts as
 constexpr int kMaxDeathsPerBatch = 6;    // crashes + hangs before the rest of a batch counts as failed
 
 // ---- Shapes and poses (double: what every method is given) --------------------------------------
-enum class Kind { Box, Hull, Sphere, Capsule };
+enum class Kind { Box, Hull, Sphere, Capsule, Cylinder };
 using V3 = std::array<double, 3>;
 
 struct Shape {
     Kind kind = Kind::Box;
-    double a = 0, b = 0, c = 0;  // box half extents; sphere radius a; capsule radius a, half height b
+    double a = 0, b = 0, c = 0;  // box half extents; sphere radius a; capsule, cylinder: radius a, half height b
     std::vector<V3> pts;         // hull points (local frame)
     int grid = 0;                // > 0: pts is the surface grid (grid^3 lattice) of the box a, b, c
 };
@@ -124,6 +126,11 @@ V3 support_local(const Shape& s, V3 d) {
             const V3 r = l > 0 ? scl(s.a / l, d) : V3{0, 0, s.a};
             return {r[0], r[1], r[2] + sgn(d[2]) * s.b};
         }
+        case Kind::Cylinder: {
+            const double rho = std::sqrt(d[0] * d[0] + d[1] * d[1]);
+            const V3 r = rho > 0 ? V3{s.a * d[0] / rho, s.a * d[1] / rho, 0} : V3{s.a, 0, 0};
+            return {r[0], r[1], sgn(d[2]) * s.b};
+        }
         case Kind::Hull: {
             size_t best = 0;
             double bv = -INFINITY;
@@ -148,6 +155,8 @@ double radius(const Shape& s) {
             return s.a;
         case Kind::Capsule:
             return s.a + s.b;
+        case Kind::Cylinder:
+            return std::sqrt(s.a * s.a + s.b * s.b);
         case Kind::Hull: {
             double r = 0;
             for (const V3& q : s.pts) r = std::max(r, len3(q));
@@ -160,6 +169,7 @@ double radius(const Shape& s) {
 Shape box(double a, double b, double c) { return {Kind::Box, a, b, c, {}, 0}; }
 Shape sphere(double r) { return {Kind::Sphere, r, 0, 0, {}, 0}; }
 Shape capsule(double r, double h) { return {Kind::Capsule, r, h, 0, {}, 0}; }
+Shape cylinder(double r, double h) { return {Kind::Cylinder, r, h, 0, {}, 0}; }
 Shape hull(std::vector<V3> pts) { return {Kind::Hull, 0, 0, 0, std::move(pts), 0}; }
 // The points of an n x n x n lattice on the surface of the box [-a,a]x[-b,b]x[-c,c]: a hull of
 // n^3 - (n-2)^3 points whose hull is exactly the box (corners included, every point on a face).
@@ -230,6 +240,8 @@ Core core_of(const Shape& s, const Pose& p, V3 shift) {
                 v.push_back(
                     world({(i & 1 ? 1 : -1) * Real(s.a), (i & 2 ? 1 : -1) * Real(s.b), (i & 4 ? 1 : -1) * Real(s.c)}));
             break;
+        case Kind::Cylinder:  // no polytope core: pairs of cylinders have their closed form
+            std::abort();
         case Kind::Hull:
             if (s.grid > 0) {  // the hull is the box exactly
                 for (int i = 0; i < 8; ++i)
@@ -244,7 +256,28 @@ Core core_of(const Shape& s, const Pose& p, V3 shift) {
     return c;
 }
 
+// Two cylinders with the same orientation (parallel axes), side by side: their axes' distance
+// less the radii, when their extents along the axis overlap by more than that (the family keeps
+// them so). Overlapping, the depth is the radii less the axes' distance (moving B out sideways).
+void parallel_cylinders_truth(Case& k) {
+    Truth& t = k.truth;
+    t.size = std::max(radius(k.A), radius(k.B));
+    const auto R = quat_matrix<Real>(k.pa.q);
+    const P3 u{R[2], R[5], R[8]};  // the common axis: the rotation's third column
+    const P3 d = lp(k.pb.p) - lp(k.pa.p);
+    const Real along = d.x * u.x + d.y * u.y + d.z * u.z;
+    const P3 across{d.x - along * u.x, d.y - along * u.y, d.z - along * u.z};
+    const Real apart = std::sqrt(across.x * across.x + across.y * across.y + across.z * across.z);
+    if (k.A.kind != Kind::Cylinder || k.B.kind != Kind::Cylinder || k.pa.q != k.pb.q ||
+        !(std::fabs(along) < Real(k.A.b + k.B.b) - Real(0.1) * t.size))
+        std::abort();  // not the configuration this truth is for
+    t.dist = apart - Real(k.A.a) - Real(k.B.a);
+    t.depth_known = true;
+    t.depth = std::max(Real(0), -t.dist);
+}
+
 void pair_truth(Case& k) {
+    if (k.A.kind == Kind::Cylinder || k.B.kind == Kind::Cylinder) return parallel_cylinders_truth(k);
     const Core a = core_of(k.A, k.pa, k.pa.p), b = core_of(k.B, k.pb, k.pa.p);
     Truth& t = k.truth;
     t.size = std::max(radius(k.A), radius(k.B));
@@ -293,6 +326,8 @@ cast_oracle::Body body_of(const Shape& s, const Pose& p, V3 shift) {
         case ::Kind::Capsule:
             b.kind = Kind::Capsule, b.radius = s.a, b.half = s.b;
             break;
+        case ::Kind::Cylinder:  // cylinders appear in pair cases only
+            std::abort();
     }
     const auto R = quat_matrix<Real>(p.q);
     for (int i = 0; i < 9; ++i) b.R[i] = R[i];
@@ -556,6 +591,9 @@ kairos_shape* kairos_make(const Shape& s) {
         case Kind::Capsule:
             st = kairos_shape_capsule(s.a, s.b, &out);
             break;
+        case Kind::Cylinder:
+            st = kairos_shape_cylinder(s.a, s.b, &out);
+            break;
         case Kind::Hull: {
             std::vector<kairos_vec3> v;
             for (const V3& q : s.pts) v.push_back({q[0], q[1], q[2]});
@@ -673,6 +711,8 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geom(const Shape& s) {
             return std::make_shared<fcl::Sphered>(s.a);
         case Kind::Capsule:
             return std::make_shared<fcl::Capsuled>(s.a, 2 * s.b);
+        case Kind::Cylinder:
+            return std::make_shared<fcl::Cylinderd>(s.a, 2 * s.b);
         case Kind::Hull:
             break;
     }
@@ -776,6 +816,9 @@ std::unique_ptr<btConvexShape> bt_shape(const Shape& s) {
             return std::make_unique<btSphereShape>(s.a);
         case Kind::Capsule:
             return std::make_unique<btCapsuleShapeZ>(s.a, 2 * s.b);
+        case Kind::Cylinder:
+            out = std::make_unique<btCylinderShapeZ>(btVector3(s.a, s.a, s.b));
+            break;
         case Kind::Hull: {
             auto h = std::make_unique<btConvexHullShape>();
             for (const V3& q : s.pts) h->addPoint(btVector3(q[0], q[1], q[2]), false);
@@ -1283,6 +1326,31 @@ Family flat_thin() {
     });
 }
 
+// Two parallel cylinders side by side at every gap (a line contact: GJK's simplex runs along the
+// contact line, and an estimate within the tolerance of the gap leaves the axis free by
+// sqrt(2 tolerance); bench_gjk and test_gjk_curved have the same case). Radii and half heights
+// 0.2 .. 1.2, B's centre along the axis within 0.3 of the half heights' sum so that the sides meet.
+// Truth: the closed form (parallel_cylinders_truth).
+Family parallel_cylinders() {
+    Family f{"parallel_cylinders", {}, false};
+    Rng r(707);
+    for (double g : signed_gaps())
+        for (int i = 0; i < 8; ++i) {
+            Case k;
+            k.type = QType::Pair;
+            k.A = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+            k.B = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+            const double size = std::max(radius(k.A), radius(k.B));
+            k.pa.q = k.pb.q = rand_quat(r);
+            k.pa.p = {uni(r, -1, 1), uni(r, -1, 1), uni(r, -1, 1)};
+            const double phi = uni(r, 0, 2 * M_PI), rho = k.A.a + k.B.a + g * size;
+            const double dz = 0.3 * (k.A.b + k.B.b) * uni(r, -1, 1);
+            k.pb.p = add(k.pa.p, mul(quat_matrix<double>(k.pa.q), V3{rho * std::cos(phi), rho * std::sin(phi), dz}));
+            f.cases.push_back(k);
+        }
+    return f;
+}
+
 Family large_hulls() {
     return gap_family("large_hulls", 606, 6, [&](Rng& r, int rep, int) {
         const Shape A = grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16);  // 1352 points
@@ -1457,6 +1525,8 @@ std::string shape_str(const Shape& s) {
             return "sphere(r=" + fmt(s.a) + ")";
         case Kind::Capsule:
             return "capsule(r=" + fmt(s.a) + ",half_height=" + fmt(s.b) + ")";
+        case Kind::Cylinder:
+            return "cylinder(r=" + fmt(s.a) + ",half_height=" + fmt(s.b) + ")";
         case Kind::Hull:
             break;
     }
@@ -1538,6 +1608,7 @@ int main(int argc, char** argv) {
         },
         true));
     fams.push_back(arg_swaps());
+    fams.push_back(parallel_cylinders());
 
     // Truths, and the hit-rate bounds: every family must have judged cases of both outcomes.
     bool one_sided = false;

@@ -21,6 +21,10 @@ cat "$build/stability.txt"
 # One reproducer per failing method and family, kept beside the CSV (peers' failures to report).
 grep '^REPRO ' "$build/stability.txt" > "$results/stability-reproducers.txt" || true
 
+# The grid's extent from the data: the largest method and family indices.
+last_method=$(awk -F, 'NR > 1 && $10 > m { m = $10 } END { print m + 0 }' "$results/stability.csv")
+last_family=$(awk -F, 'NR > 1 && $11 > m { m = $11 } END { print m + 0 }' "$results/stability.csv")
+
 gnuplot <<GP
 set terminal pngcairo size 1700,900 font "DejaVu Sans,11" noenhanced
 set output "$results/stability.png"
@@ -29,8 +33,8 @@ set title "Stability catalogue: failure rate (%) by method and family (blank: no
 set palette defined (0 "#f7fbff", 0.001 "#fff5d6", 5 "#fdae61", 25 "#e34a33", 100 "#7f0000")
 set cbrange [0:100]
 set cblabel "failure rate (%)"
-set xrange [-0.5:14.5]
-set yrange [13.5:-0.5]
+set xrange [-0.5:$last_family.5]
+set yrange [$last_method.5:-0.5]
 set xtics rotate by 35 right font ",10"
 set ytics font ",10"
 set tics scale 0
