@@ -1298,6 +1298,62 @@ TEST(GjkEdges, HugeFlatHullCrossedByASmallShapeGivesACommonPointInBoth) {
     kairos_shape_release(cone);
 }
 
+// A box 2e5 .. 2e9 long and about 2 thick through a cylinder thousands wide and about 2 thick,
+// both about the same point and turned alike: they overlap deeply, by
+// min(hz + h, min(hx, hy) + r) (the origin's depth in the box grown by the cylinder). A sliver
+// tetrahedron of A - B held the origin by only 0.2, GJK stopped 0.22 away with no lower bound,
+// and kairos_intersect, kairos_distance and kairos_signed_distance all said "apart" for an overlap
+// of 4622 (found by fuzz_queries; the code before the fix said 0.22 and 0.29 apart on this test's
+// first two cases). Truth: the closed form above.
+TEST(GjkEdges, NeedleBoxThroughAFlatWideCylinderOverlaps) {
+    const uint64_t seed = 20261128;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit01(0, 1);
+    std::normal_distribution<double> gauss;
+    int cases = 0, wrong = 0;
+    double worst_depth = 0;
+    for (int i = 0; i < 200; ++i) {
+        V h{std::pow(10.0, 5 + 4 * unit01(rng)), 0.5 + 1.5 * unit01(rng), 1e3 + 4e3 * unit01(rng)};
+        double radius = 1e3 + 4e3 * unit01(rng), half = 0.5 + 1.5 * unit01(rng);
+        kairos_pose pose{{0, 0, 0}, {0, 0, 0, 1}};
+        if (i == 0) {  // the finding
+            h = {632529182.87937737, 1, 4621.1490043488211};
+            radius = 4635.2941176470586, half = 1.0201876859693293;
+        } else if (i % 2 == 0) {  // turned alike, somewhere else
+            const Rot turn = make_rot({gauss(rng), gauss(rng), gauss(rng)}, 6.283185307179586 * unit01(rng));
+            pose = {{1e3 * gauss(rng), 1e3 * gauss(rng), 1e3 * gauss(rng)}, {turn.q[0], turn.q[1], turn.q[2], turn.q[3]}};
+        }
+        kairos_shape *box = nullptr, *cylinder = nullptr;
+        ASSERT_EQ(kairos_shape_box(kv(h), &box), KAIROS_OK);
+        ASSERT_EQ(kairos_shape_cylinder(radius, half, &cylinder), KAIROS_OK);
+        const double depth = std::min(h.z + half, std::min(h.x, h.y) + radius);
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " case " << i << " box " << h.x << " " << h.y << " "
+                                        << h.z << " cylinder " << radius << " " << half);
+        for (int order = 0; order < 2; ++order) {
+            const kairos_shape* a = order ? cylinder : box;
+            const kairos_shape* b = order ? box : cylinder;
+            int32_t hit = 0;
+            kairos_distance_result d{}, sd{};
+            ASSERT_EQ(kairos_intersect(a, &pose, b, &pose, nullptr, &hit), KAIROS_OK);
+            ASSERT_EQ(kairos_distance(a, &pose, b, &pose, nullptr, &d), KAIROS_OK);
+            ASSERT_EQ(kairos_signed_distance(a, &pose, b, &pose, nullptr, &sd), KAIROS_OK);
+            ++cases;
+            const double depth_error = std::fabs(-sd.distance - depth) / depth;
+            worst_depth = std::max(worst_depth, depth_error);
+            const bool ok = hit == 1 && d.intersecting == 1 && d.distance == 0 && depth_error <= 1e-6;
+            if (!ok && ++wrong <= 5)
+                ADD_FAILURE() << "order " << order << ": intersect " << hit << ", distance " << d.distance
+                              << " (termination " << d.termination << "), signed distance " << sd.distance
+                              << " (depth " << depth << ", termination " << sd.termination << ")";
+        }
+        kairos_shape_release(box);
+        kairos_shape_release(cylinder);
+    }
+    std::printf("needle boxes through flat cylinders: %d queries, %d wrong, worst depth error %.3g of the depth\n",
+                cases, wrong, worst_depth);
+    EXPECT_EQ(wrong, 0);
+}
+
 // A ball whose centre lies a small gap from a flat ellipse (a sphere mapped by a singular-looking
 // diagonal, 1e-19 thick), the centre over the ellipse: the signed distance is the gap less the
 // ball's radius, in both orders. The cores' GJK axis came out 3e-7 off the ellipse's normal, and
