@@ -10,6 +10,7 @@
 // shapes and the distance apart; an intersecting answer by its contact point lying in both shapes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -1352,6 +1353,74 @@ TEST(GjkEdges, NeedleBoxThroughAFlatWideCylinderOverlaps) {
     std::printf("needle boxes through flat cylinders: %d queries, %d wrong, worst depth error %.3g of the depth\n",
                 cases, wrong, worst_depth);
     EXPECT_EQ(wrong, 0);
+}
+
+// Ray casts onto capsules and rounded boxes (a box plus a sphere) at every tolerance: the normal is
+// the exact one at the ray point (from the core's nearest point, in closed form here), so its
+// support plane never has the ray point past it. At tolerance 1e-3 GJK's v tilted 0.009 rad along
+// a capsule's straight side, and that plane cut the ray point by 0.018 (found by fuzz_queries).
+// Truth: the segment's or box's nearest point to the ray point, and the shape's support along the
+// normal, both in closed form.
+TEST(GjkEdges, RayOntoRoundedCoresGetsTheExactNormalAtEveryTolerance) {
+    const uint64_t seed = 202611282;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit01(0, 1);
+    std::normal_distribution<double> gauss;
+    const double tolerances[] = {0.5, 1e-1, 1e-2, 1e-3, 1e-6, 1e-10};
+    int hits = 0, wrong = 0;
+    double worst_angle = 0, worst_plane = 0;
+    for (int i = 0; i < 600; ++i) {
+        const bool capsule = i % 2 == 0;
+        const double radius = 0.2 + 1.3 * unit01(rng);
+        const V h = capsule ? V{0, 0, 0.2 + 1.3 * unit01(rng)}
+                            : V{0.2 + unit01(rng), 0.2 + unit01(rng), 0.2 + unit01(rng)};
+        kairos_shape* shape = nullptr;
+        if (capsule) {
+            ASSERT_EQ(kairos_shape_capsule(radius, h.z, &shape), KAIROS_OK);
+        } else {
+            kairos_shape *box = nullptr, *sphere = nullptr;
+            ASSERT_EQ(kairos_shape_box(kv(h), &box), KAIROS_OK);
+            ASSERT_EQ(kairos_shape_sphere(radius, &sphere), KAIROS_OK);
+            ASSERT_EQ(kairos_shape_minkowski_sum(box, sphere, &shape), KAIROS_OK);
+            kairos_shape_release(box);
+            kairos_shape_release(sphere);
+        }
+        const Rot turn = make_rot({gauss(rng), gauss(rng), gauss(rng)}, 6.283185307179586 * unit01(rng));
+        const kairos_pose pose{{gauss(rng), gauss(rng), gauss(rng)}, {turn.q[0], turn.q[1], turn.q[2], turn.q[3]}};
+        const V centre = fromk(pose.position);
+        // From 3 .. 6 away, aimed at a point within the shape's reach (most hit, some graze or miss).
+        const V origin = centre + (3 + 3 * unit01(rng)) * unit({gauss(rng), gauss(rng), gauss(rng)});
+        const V aim = centre + (0.5 * (radius + norm(h))) * V{gauss(rng), gauss(rng), gauss(rng)};
+        const V translation = 1.5 * (aim - origin);
+        kairos_query_settings settings;
+        kairos_query_settings_init(&settings);
+        settings.tolerance = tolerances[i % 6];
+        kairos_cast_result r;
+        ASSERT_EQ(kairos_ray_cast(shape, &pose, kv(origin), kv(translation), &settings, &r), KAIROS_OK);
+        kairos_shape_release(shape);
+        if (!r.hit || !(r.toi > 0)) continue;
+        ++hits;
+        // The ray point at toi in the shape's frame, the core's nearest point, the exact normal.
+        const V x = apply_t(turn, origin + r.toi * translation - centre);
+        const V q{std::clamp(x.x, -h.x, h.x), std::clamp(x.y, -h.y, h.y), std::clamp(x.z, -h.z, h.z)};
+        const V exact = unit(x - q);
+        const V n = apply_t(turn, fromk(r.normal));
+        const V c{n.y * exact.z - n.z * exact.y, n.z * exact.x - n.x * exact.z, n.x * exact.y - n.y * exact.x};
+        const double angle = std::asin(std::min(1.0, norm(c)));
+        // The support plane of the reported normal: h . |n| + radius, against the ray point.
+        const double support = h.x * std::fabs(n.x) + h.y * std::fabs(n.y) + h.z * std::fabs(n.z) + radius * norm(n);
+        const double past = support - dot(n, x);
+        worst_angle = std::max(worst_angle, angle), worst_plane = std::max(worst_plane, past);
+        if (!(dot(n, exact) > 0 && angle <= 1e-9 && past <= 1e-12) && ++wrong <= 5)
+            ADD_FAILURE() << "seed " << seed << " case " << i << " (" << (capsule ? "capsule" : "rounded box")
+                          << ", tolerance " << settings.tolerance << "): normal " << angle
+                          << " rad off the exact one, the ray point " << past << " past its plane (toi " << r.toi
+                          << ", termination " << r.termination << ")";
+    }
+    std::printf("rays onto capsules and rounded boxes: %d hits, %d wrong, worst normal %.3g rad, worst plane %.3g\n",
+                hits, wrong, worst_angle, worst_plane);
+    EXPECT_EQ(wrong, 0);
+    EXPECT_GT(hits, 300);
 }
 
 // A ball whose centre lies a small gap from a flat ellipse (a sphere mapped by a singular-looking
