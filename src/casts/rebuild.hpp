@@ -16,23 +16,14 @@ namespace kairos::cast_detail {
 
 using gjk_detail::Simplex;
 
-// The first pass with `all` known at compile time (as add() runs it): the first valid subset.
+// The first pass with `all` known at compile time (as add() runs it): the first valid subset,
+// smallest first, the empty one skipped and the full tetrahedron left to the geometric test.
 template <unsigned All>
 bool first_valid_proper(Simplex& s) {
     constexpr auto& table = gjk_detail::kSubsets;
     return [&]<unsigned... T>(std::integer_sequence<unsigned, T...>) {
-        auto try_one = [&](auto sc) {
-            constexpr unsigned sub = decltype(sc)::value;
-            if constexpr (sub == 0 || sub == 15u) {  // decided geometrically above
-                return false;
-            } else {
-                if (!s.valid_t<sub, All>()) return false;
-                s.set_from_subset_t<sub>();
-                return true;
-            }
-        };
-        return (try_one(std::integral_constant<unsigned, table.subsets[All][T]>{}) || ...);
-    }(std::make_integer_sequence<unsigned, table.count[All]>{});
+        return (s.try_subset<table.subsets[All][T + 1], All>() || ...);
+    }(std::make_integer_sequence<unsigned, table.count[All] - 1>{});
 }
 
 // Johnson's test over every subset of `all` except the full tetrahedron (its determinants must be
@@ -44,35 +35,7 @@ inline Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
         return std::array<Fn, 16>{&first_valid_proper<M>...};
     }(std::make_integer_sequence<unsigned, 16>{});
     if (first[all & 15u](s)) return Simplex::Outcome::Reduced;
-    const auto& table = gjk_detail::kSubsets;
-    const unsigned n_sub = table.count[all];
-    double best = INFINITY;
-    unsigned best_s = 0;
-    for (unsigned t = 1; t < n_sub; ++t) {
-        const unsigned sub = table.subsets[all][t];
-        if (sub == 15u) continue;
-        bool positive = true;
-        double sum = 0;
-        for (unsigned r = sub; r; r &= r - 1) {
-            const double d = s.det[sub][std::countr_zero(r)];
-            if (!(d > 0)) positive = false;  // NaN fails too
-            sum += d;
-        }
-        if (!positive) continue;
-        Vec3 p{};
-        for (unsigned r = sub; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
-            p += (s.det[sub][i] / sum) * s.y[i];
-        }
-        const double n2 = dot(p, p);
-        if (n2 < best) {
-            best = n2;
-            best_s = sub;
-        }
-    }
-    if (best_s == 0) return Simplex::Outcome::Failed;
-    s.set_from_subset(best_s);
-    return Simplex::Outcome::Backup;
+    return s.backup(all, INFINITY);
 }
 
 // After a rebuild: a flat or thin tetrahedron (Simplex::thickness; add() applies the same test)
