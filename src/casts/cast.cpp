@@ -7,6 +7,7 @@
 #include "casts/cast.hpp"
 #include "casts/rebuild.hpp"
 #include "gjk/closed_forms.hpp"
+#include "gjk/core_distance.hpp"
 #include "gjk/gjk.hpp"
 #include "gjk/penetration.hpp"
 #include "gjk/simplex.hpp"
@@ -540,6 +541,29 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         }
         return out;
     }
+    // Rounded shapes whose cores have closed forms (spheres and capsules among themselves, a sphere
+    // and a rounded box): the normal and point from the cores' exact closest points at toi, as the
+    // ray cast does, whatever the tolerance left in v (at 1e-3 it tilted up to 0.06 rad on capsule
+    // pairs and 0.11 on a sphere and a box; at 1e-1, 0.8). A direction that does not oppose the
+    // motion (grazing) keeps the cast's normal.
+    // Each pose moved to toi.
+    auto at_toi = [&](const Transform& pose, Vec3 translation) {
+        Transform moved = pose;
+        moved.translation = pose.translation + out.toi * translation;
+        return moved;
+    };
+    if (margin > 0 && closed_form_cores(ca, cb)) {
+        const Transform at_a = at_toi(pose_a, translation_a), at_b = at_toi(pose_b, translation_b);
+        const CoreDistance cd = core_distance(ca, at_a, cb, at_b, tolerance, max_iterations);
+        const Vec3 nw = at_a.rotation * cd.unit;
+        const Vec3 mid = 0.5 * ((cd.point_a + ca.radius * cd.unit) + (cd.point_b - cb.radius * cd.unit));
+        if (!cd.overlap && dot(cd.unit, cd.unit) > 0.5 && is_finite(mid) &&
+            dot(nw, translation_b - translation_a) < 0) {
+            out.normal = nw;
+            out.point = at_a.apply(mid);
+        }
+        return out;
+    }
     // A stop on a rounding rule can leave a simplex whose v, and the last clipping plane, are far
     // from the contact normal on a long shape (15 degrees on a capsule stretched to 1e5 by a
     // transform, 1e-4 short of contact; found by fuzzing): the normal and point then come from
@@ -549,9 +573,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     const Termination stop = l.termination;
     if (out.toi > 0 && !l.settled &&
         (stop == Termination::NoProgress || stop == Termination::RepeatedSupport || stop == Termination::JohnsonFailed)) {
-        Transform at_a = pose_a, at_b = pose_b;
-        at_a.translation = pose_a.translation + out.toi * translation_a;
-        at_b.translation = pose_b.translation + out.toi * translation_b;
+        const Transform at_a = at_toi(pose_a, translation_a), at_b = at_toi(pose_b, translation_b);
         const DistanceResult d = gjk_distance(a, at_a, b, at_b, tolerance, max_iterations);
         // The better of the two separates the shapes at toi by more (near a curved rim, where the
         // gap is at rounding level, the cast's own normal is).

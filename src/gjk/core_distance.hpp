@@ -23,6 +23,10 @@ struct CoreDistance {
     Termination termination = Termination::None;
 };
 
+// Whether core_distance has a closed form for the pair (points and segments among themselves, a
+// point and a box).
+bool closed_form_cores(const kernels::CoreOf& ca, const kernels::CoreOf& cb);
+
 // The closed forms for the pairs that have them, else GJK on the cores with no margin (held, may
 // be null: its final tetrahedron when the cores overlap).
 CoreDistance core_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,

@@ -460,6 +460,8 @@ LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, cons
 
 }  // namespace
 
+bool closed_form_cores(const CoreOf& ca, const CoreOf& cb) { return closed_form_pair(ca, cb); }
+
 CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
                            double tolerance, uint32_t max_iterations, HeldTetrahedron* held) {
     if (max_iterations == 0) max_iterations = 1;
