@@ -300,9 +300,11 @@ KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pos
  * first time of impact in [0, 1] (a ray from the origin along translation_b - translation_a cast
  * onto A - B, computed in a's frame so positions far from the world origin keep their precision).
  * toi: never later than the true first contact by more than the tolerance, never a missed
- * contact. normal: unit, from A toward B (the latest clipping plane; normal . (translation_b -
- * translation_a) < 0). point: the contact point at toi, world frame (from the final simplex's
- * barycentric coordinates). Shapes that overlap at the start: hit 1, toi 0, normal the minimum
+ * contact. normal: unit, from A toward B (the latest clipping plane; for spheres and capsules
+ * among themselves and a sphere with a box, the direction between the cores' closest points at
+ * toi, exact for that toi at any tolerance; normal . (translation_b - translation_a) < 0). point:
+ * the contact point at toi, world frame (from the final simplex's barycentric coordinates, or
+ * those closest points pushed out by the radii). Shapes that overlap at the start: hit 1, toi 0, normal the minimum
  * translation's axis from A toward B and point midway between the deepest points, as
  * kairos_signed_distance gives them (call it for the depth). Shapes that touch at the start (depth
  * 0 within rounding): hit 1, toi 0, normal = -(translation_b - translation_a), unit (the contact
