@@ -4,6 +4,7 @@
 #include "gjk/gjk.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/loop_rules.hpp"
+#include "gjk/seed.hpp"
 #include "gjk/closed_forms.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
@@ -68,7 +69,7 @@ inline bool touching(double nv, double max_norm_sq, double margin_sq) {
 
 template <class Pair>
 LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations,
-                            HeldTetrahedron* held = nullptr) {
+                            HeldTetrahedron* held = nullptr, DistanceSeed* seed = nullptr) {
     // pair by value: its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;  // coordinates once, at the end
@@ -93,11 +94,26 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     LocalDistance out{};
     out.termination = Termination::MaxIterations;
     bool intersecting = false;
+    bool scaled = false;
+    if (seed != nullptr) {
+        // The scale is adopted from the seed's first point when there is one (scaled then).
+        gjk_detail::seed_simplex(pair, *seed, s, [&](Vec3& a, Vec3& b, Vec3& w) {
+            set_scale(pair, a, b, w, margin, margin_sq);
+            scaled = true;
+        });
+        if (s.bits != 0) {
+            v = s.v;
+            vv = dot(v, v);
+        }
+    }
     uint32_t it = 0;
     while (it < max_iterations) {
         Vec3 a, b;
         Vec3 w = pair(-v, a, b);
-        if (it == 0) set_scale(pair, a, b, w, margin, margin_sq);
+        if (!scaled) {
+            set_scale(pair, a, b, w, margin, margin_sq);
+            scaled = true;
+        }
         ++it;
         Termination stop = Termination::None;
         unsigned pool = 0;  // the points the recovery may use
@@ -233,6 +249,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     }
     if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
     out.iterations = it;
+    if (seed != nullptr) gjk_detail::save_seed(pair, s, intersecting, *seed);
     s.update_lambda();
     refine_full_coordinates(s);
     // Witness points from coordinates that do not reproduce v (a sliver whose projection is right
@@ -292,8 +309,9 @@ template <class Pair>
 }
 template <class Pair>
 [[gnu::always_inline]] inline LocalDistance distance_query(const Pair& pair, double margin, double tolerance,
-                                                           uint32_t max_iterations, HeldTetrahedron* held = nullptr) {
-    LocalDistance l = distance_loop(pair, margin, tolerance, max_iterations, held);
+                                                           uint32_t max_iterations, HeldTetrahedron* held = nullptr,
+                                                           DistanceSeed* seed = nullptr) {
+    LocalDistance l = distance_loop(pair, margin, tolerance, max_iterations, held, seed);
     if (l.lengthened && !l.intersecting) [[unlikely]]
         rerun_shorter(pair, margin, tolerance, l);
     return l;
@@ -487,7 +505,7 @@ CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const Core
 }
 
 DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
-                            double tolerance, uint32_t max_iterations, HeldTetrahedron* held) {
+                            double tolerance, uint32_t max_iterations, HeldTetrahedron* held, DistanceSeed* seed) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const double radius_a = ca.radius, radius_b = cb.radius;
@@ -497,8 +515,9 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
             ? closed_form_distance(ca, pose_a, cb, pose_b, center_offset)
             : with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
                   center_offset = pair.t;
-                  return distance_query(pair, margin, tolerance, max_iterations, held);
+                  return distance_query(pair, margin, tolerance, max_iterations, held, seed);
               });
+    if (seed != nullptr && closed_form_pair(ca, cb)) seed->count = 0;
 
     DistanceResult r;
     r.iterations = l.iterations;

@@ -182,7 +182,7 @@ private:
     // flat tetrahedra and sub-simplices below the lower bound, and the motion tests pass without
     // this check. It stays as a cheap second opinion: it runs only on an intersection claim.)
     DistanceResult distance_now(double tol) {
-        DistanceResult d = gjk_distance(a_, pa_, b_, pb_, tol, max_iterations_);
+        DistanceResult d = gjk_distance(a_, pa_, b_, pb_, tol, max_iterations_, nullptr, &seed_);
         dist_tolerance_ = tol;
         iterations_ += d.iterations;
         ++stats_.distances;
@@ -373,6 +373,7 @@ private:
     double t0_ = 0;              // no contact in [0, t0]
     Transform pa_, pb_;          // the poses at t0
     DistanceResult dist_;        // the distance at t0
+    DistanceSeed seed_;          // the last distance's simplex, where the next one starts
     double dist_tolerance_ = 0;  // the relative tolerance of the query behind dist_
     Vec3 clip_normal_{};         // world, from A toward B, of the latest clip of a fattened cast
     bool clipped_ = false;
