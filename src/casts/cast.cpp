@@ -22,6 +22,8 @@ namespace kairos {
 namespace {
 using namespace kernels;
 using gjk_detail::Simplex;
+using cast_detail::coordinates_sane;
+using cast_detail::on_boundary_face;
 using cast_detail::rebuild;
 
 // C = one shape (ray cast): p = s(d); b is zero. `scale` as in PairSupport.
@@ -47,42 +49,6 @@ double cast_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x, Vec3 r) {
     const double rmax = max_abs(r);
     while (sc > 1 && !(rmax * sc <= 0x1p400)) sc = std::fmax(1.0, sc * 0x1p-100);
     return sc;
-}
-
-// x reached the boundary of C (a clip happened, so x is on or outside C) and the tetrahedron of
-// the simplex holds it: x lies on one of its faces. The coordinates from signed volumes lose their
-// digits on flat tetrahedra, so the contact point is taken from the face nearest x, with the face's
-// own coordinates (all of them non-negative up to rounding); without such a face the tetrahedron's
-// coordinates stay.
-void on_boundary_face(Simplex& sx) {
-    const Simplex full = sx;
-    double best = INFINITY;
-    unsigned best_face = 0;
-    for (int drop = 0; drop < 4; ++drop) {
-        const unsigned face = 15u & ~(1u << drop);
-        Simplex trial = full;
-        trial.set_from_subset(face);
-        bool inside = true;
-        for (unsigned r = face; r; r &= r - 1)
-            if (!(trial.lambda[std::countr_zero(r)] >= -1e-9)) inside = false;
-        const double d = dot(trial.v, trial.v);
-        if (inside && d < best) {
-            best = d;
-            best_face = face;
-        }
-    }
-    if (best_face == 0) return;
-    sx.set_from_subset(best_face);
-    sx.v = Vec3{};
-}
-
-// The barycentric coordinates of v over the kept points lie in [0, 1] up to rounding.
-bool coordinates_sane(const Simplex& sx) {
-    for (unsigned q = sx.bits; q; q &= q - 1) {
-        const double l = sx.lambda[std::countr_zero(q)];
-        if (!(l >= -1e-9 && l <= 1 + 1e-9)) return false;
-    }
-    return true;
 }
 
 // ---- The cast loop ------------------------------------------------------------------------------
@@ -163,10 +129,18 @@ private:
     // separates x from C it clips: lambda advances to where the ray crosses it, and w follows x.
     // False when the ray misses C (x moves away from the plane, or crosses it past lambda = 1).
     bool clip(Vec3 p, Vec3& w) {
-        const double vw = dot(v_, w);
-        const double offset = margin_ > 0 ? margin_ * std::sqrt(dot(v_, v_)) : 0.0;
+        // A tiny v is brought to about unit size first (by a power of two: exact, and every test
+        // below is homogeneous in v). The loop's scale cannot always bring the gap near 1: with a
+        // start 1e-300 from a point-sized shape and a motion of 10 it stops where the motion
+        // reaches 2^400, the gap stays near 1e-181, and v.w underflowed to 0, so a ray passing
+        // beside the shape never clipped and was read as a hit (fuzzing).
+        Vec3 v = v_;
+        const double m = max_abs(v);
+        if (m > 0 && m < 0x1p-400) v = std::ldexp(1.0, -std::ilogb(m)) * v;
+        const double vw = dot(v, w);
+        const double offset = margin_ > 0 ? margin_ * std::sqrt(dot(v, v)) : 0.0;
         if (!(vw > offset)) return true;  // NaN fails and does not clip
-        const double vr = dot(v_, r_);
+        const double vr = dot(v, r_);
         if (!(vr < 0)) return false;
         double next = lambda_ - (vw - offset) / vr;
         if (!(next <= 1)) {
@@ -176,7 +150,7 @@ private:
             // reaching the step's end, so an entry there is never missed. Compared as the plane's
             // separation of the ray's end, not as lambdas: over a motion of subnormal length both
             // quotients overflow to inf, and inf <= inf let a ray stopped 1e10 away hit (fuzzing).
-            const double rounding = 4 * std::numeric_limits<double>::epsilon() * std::sqrt(dot(v_, v_)) * (max_abs(x_) + max_abs(p) + margin_);
+            const double rounding = 4 * std::numeric_limits<double>::epsilon() * std::sqrt(dot(v, v)) * (max_abs(x_) + max_abs(p) + margin_);
             if (!((vw - offset) + (1 - lambda_) * vr <= rounding)) return false;
             next = 1;
         }
@@ -269,11 +243,7 @@ private:
             return Termination::FullSimplex;
         }
         const double nv = dot(sx_.v, sx_.v);
-        // The stop is relative to the simplex's size seen from x (docs/algorithms.md §3), but not
-        // below 2^-10 of C's: a simplex shrunk around x asked for more digits than double has.
-        const double simplex_sq = std::max(sx_.max_norm_sq(), 0x1p-20 * extent_sq_);
-        if (margin_ > 0 ? std::sqrt(nv) - margin_ <= eps_ * std::sqrt(simplex_sq) : nv <= eps_sq_ * simplex_sq)
-            return Termination::Hit;
+        if (reached(nv)) return Termination::Hit;
         if (no_progress(nv)) {
             if (!restart(nv)) return Termination::NoProgress;
             sx_.add(w, a, b, INFINITY);
@@ -287,6 +257,30 @@ private:
         vv_ = nv;
         v_ = sx_.v;
         return Termination::None;
+    }
+
+    // The stop: ||v|| (less the margin) within eps of the simplex's size seen from x
+    // (docs/algorithms.md §3), that size not below 2^-10 of C's: a simplex shrunk around x asked
+    // for more digits than double has. Squares near underflow (a gap of 1e-181 at the loop's
+    // scale read 0 <= 0, a hit beside a point-sized shape; fuzzing) are compared again at a
+    // scale that brings v to about 1 (a power of two: exact).
+    bool reached(double nv) const {
+        double size_sq = std::max(sx_.max_norm_sq(), 0x1p-20 * extent_sq_), margin = margin_;
+        const double m = max_abs(sx_.v);
+        if (nv < 0x1p-800 && m > 0) {
+            const double k = std::ldexp(1.0, -std::ilogb(m));
+            const Vec3 v = k * sx_.v;
+            nv = dot(v, v);
+            size_sq = 0;
+            for (unsigned q = sx_.bits; q; q &= q - 1) {
+                const Vec3 y = k * sx_.y[std::countr_zero(q)];
+                size_sq = std::max(size_sq, dot(y, y));
+            }
+            const double e = k * std::sqrt(extent_sq_);
+            size_sq = std::max(size_sq, 0x1p-20 * (e * e));
+            margin *= k;
+        }
+        return margin > 0 ? std::sqrt(nv) - margin <= eps_ * std::sqrt(size_sq) : nv <= eps_sq_ * size_sq;
     }
 
     // Rule 6 while x stays put: GJK about a fixed point has converged to rounding. On curved

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The shape cast's simplex after a clip (cast.cpp): re-expressed about the new ray point, its
+// The shape cast's simplex (cast.cpp): after a clip, re-expressed about the new ray point, its
 // determinants recomputed and Johnson's test run over every subset, since the closest sub-simplex
-// need not hold the newest point once x has moved. The first pass runs with the point set known
-// at compile time, as Simplex::add does.
+// need not hold the newest point once x has moved (the first pass runs with the point set known
+// at compile time, as Simplex::add does); and its checks at the boundary.
 #pragma once
 
 #include <array>
@@ -71,6 +71,42 @@ inline Simplex::Outcome rebuild(Simplex& s, Vec3 x, bool add, Vec3 a, Vec3 b) {
         return check_full(s);
     }
     return johnson_proper(s, all);
+}
+
+// x reached the boundary of C (a clip happened, so x is on or outside C) and the tetrahedron of
+// the simplex holds it: x lies on one of its faces. The coordinates from signed volumes lose their
+// digits on flat tetrahedra, so the contact point is taken from the face nearest x, with the face's
+// own coordinates (all of them non-negative up to rounding); without such a face the tetrahedron's
+// coordinates stay.
+inline void on_boundary_face(Simplex& sx) {
+    const Simplex full = sx;
+    double best = INFINITY;
+    unsigned best_face = 0;
+    for (int drop = 0; drop < 4; ++drop) {
+        const unsigned face = 15u & ~(1u << drop);
+        Simplex trial = full;
+        trial.set_from_subset(face);
+        bool inside = true;
+        for (unsigned r = face; r; r &= r - 1)
+            if (!(trial.lambda[std::countr_zero(r)] >= -1e-9)) inside = false;
+        const double d = dot(trial.v, trial.v);
+        if (inside && d < best) {
+            best = d;
+            best_face = face;
+        }
+    }
+    if (best_face == 0) return;
+    sx.set_from_subset(best_face);
+    sx.v = Vec3{};
+}
+
+// The barycentric coordinates of v over the kept points lie in [0, 1] up to rounding.
+inline bool coordinates_sane(const Simplex& sx) {
+    for (unsigned q = sx.bits; q; q &= q - 1) {
+        const double l = sx.lambda[std::countr_zero(q)];
+        if (!(l >= -1e-9 && l <= 1 + 1e-9)) return false;
+    }
+    return true;
 }
 
 }  // namespace kairos::cast_detail

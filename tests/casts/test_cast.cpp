@@ -560,6 +560,42 @@ TEST(ShapeCast, ATinyMotionFarFromAShapeNeverHits) {
     std::printf("tiny motions far away: %d casts, %d hits\n", cases, hits);
 }
 
+// A fuzz finding: a ray from 1e-300 beside a point-sized shape with no closed form (the Minkowski
+// sum of two points: GJK's path) and a motion of length 10 hit it. The cast's scale stops where
+// the motion reaches 2^400, the gap stayed near 1e-181 and its squares underflowed, so the clip
+// test read v.w = 0 and the stop 0 <= 0. Rays from 1e-200 .. 1e-307 beside the point (the closed
+// form for a point shape is the truth: it misses them) must miss; rays aimed through it must
+// hit, at the closed form's time.
+TEST(RayCast, APointSizedShapeAtTheSmallestScales) {
+    const uint64_t seed = 977;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const PointShape point;
+    const MinkowskiSumShape sum(point, point);
+    const Transform at = make_transform({0, 0, 0}, Quat{});
+    int beside = 0, through = 0;
+    for (double start : {1e-200, 1e-260, 1e-280, 1e-300, 1e-307})
+        for (int i = 0; i < 40; ++i) {
+            const Vec3 o = start * Vec3{u(rng), u(rng), u(rng)};
+            // Beside: a motion of length about 10 whose line misses the origin by about |o|.
+            const Vec3 m = 10 * Vec3{u(rng), u(rng), u(rng)};
+            const CastResult truth = ray_cast(point, at, o, m, 1e-10, 256);
+            const CastResult r = ray_cast(sum, at, o, m, 1e-10, 256);
+            if (!truth.hit) {
+                ++beside;
+                EXPECT_FALSE(r.hit) << "start " << start << " case " << i << " seed " << seed << ": toi " << r.toi;
+            }
+            // Through: twice the way back to the origin (x(0.5) = 0 exactly).
+            const CastResult h = ray_cast(sum, at, o, -2.0 * o, 1e-10, 256);
+            ++through;
+            EXPECT_TRUE(h.hit) << "start " << start << " case " << i << " seed " << seed;
+            EXPECT_LE(h.toi, 0.5) << "start " << start << " case " << i << " seed " << seed;
+            EXPECT_GT(h.toi, 0.5 - 1e-9) << "start " << start << " case " << i << " seed " << seed;
+        }
+    std::printf("point-sized shape at 1e-200 .. 1e-307: %d rays beside, %d through\n", beside, through);
+    EXPECT_GT(beside, 150);  // random motions almost never pass within rounding of the point
+}
+
 // A fuzz finding: a unit sphere cast onto a capsule stretched by a transform to 1.4e5 long and
 // 0.12 thin stopped on "no progress" 1e-4 short of contact with a normal 15 degrees off, so the
 // normal's plane cut 3.5 deep into the capsule at toi. The normal must still separate the shapes
