@@ -115,6 +115,12 @@ void row(FILE* f, const char* scenario, double angle, const char* method, double
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Anything starting with '-' (such as --help) gets the usage, not a file of that name.
+    if (argc > 3 || (argc > 1 && argv[1][0] == '-')) {
+        std::fprintf(stderr, "usage: %s [out.csv] [cases per set]   (CSV rows; default: standard output, 192)\n",
+                     argv[0]);
+        return 2;
+    }
     FILE* out = argc > 1 ? std::fopen(argv[1], "w") : stdout;
     if (!out) return 1;
     const int count = argc > 2 ? std::atoi(argv[2]) : 192;
