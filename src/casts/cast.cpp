@@ -29,6 +29,7 @@ using cast_detail::rebuild;
 // C = one shape (ray cast): p = s(d); b is zero. `scale` as in PairSupport.
 template <class S>
 struct SingleSupport {
+    static constexpr bool exact = exact_support<S>;
     S s;
     double scale = 1;
     [[gnu::always_inline]] Vec3 operator()(Vec3 d, Vec3& out_a, Vec3& out_b) const {
@@ -98,9 +99,11 @@ public:
                 adopt_first_scale(a, b, p);
                 first_p_ = p;
             }
-            const Vec3 spread = p - first_p_;
-            const double spread_sq = dot(spread, spread);
-            if (spread_sq > extent_sq_) extent_sq_ = spread_sq;
+            if constexpr (kCurved) {
+                const Vec3 spread = p - first_p_;
+                const double spread_sq = dot(spread, spread);
+                if (spread_sq > extent_sq_) extent_sq_ = spread_sq;
+            }
             ++it;
             Vec3 w = x_ - p;
             if (!clip(p, w)) {
@@ -135,9 +138,14 @@ private:
         // reaches 2^400, the gap stays near 1e-181, and v.w underflowed to 0, so a ray passing
         // beside the shape never clipped and was read as a hit (fuzzing).
         Vec3 v = v_;
-        const double m = max_abs(v);
-        if (m > 0 && m < 0x1p-400) v = std::ldexp(1.0, -std::ilogb(m)) * v;
-        const double vw = dot(v, w);
+        double vw = dot(v, w);
+        if (!(std::fabs(vw) > 0x1p-900)) [[unlikely]] {
+            const double m = max_abs(v);
+            if (m > 0 && m < 0x1p-400) {
+                v = std::ldexp(1.0, -std::ilogb(m)) * v;
+                vw = dot(v, w);
+            }
+        }
         const double offset = margin_ > 0 ? margin_ * std::sqrt(dot(v, v)) : 0.0;
         if (!(vw > offset)) return true;  // NaN fails and does not clip
         const double vr = dot(v, r_);
@@ -266,9 +274,8 @@ private:
     // scale that brings v to about 1 (a power of two: exact).
     bool reached(double nv) const {
         double size_sq = std::max(sx_.max_norm_sq(), 0x1p-20 * extent_sq_), margin = margin_;
-        const double m = max_abs(sx_.v);
-        if (nv < 0x1p-800 && m > 0) {
-            const double k = std::ldexp(1.0, -std::ilogb(m));
+        if (nv < 0x1p-800 && max_abs(sx_.v) > 0) [[unlikely]] {
+            const double k = std::ldexp(1.0, -std::ilogb(max_abs(sx_.v)));
             const Vec3 v = k * sx_.v;
             nv = dot(v, v);
             size_sq = 0;
@@ -354,8 +361,12 @@ private:
     double vv_ = INFINITY;       // ||v||^2 of the current simplex estimate
     double best_vv_ = INFINITY;  // smallest ||v||^2 since the last clip
     int stalled_ = 0;            // estimates in a row, since then, that did not improve on it
+    // Curved or general supports (a cylinder, a cone, a Minkowski sum): the simplex can shrink
+    // around x below C's size. Polytope supports (exact vertices) keep the simplex's own size.
+    static constexpr bool kCurved = !Support::exact;
+
     // C's size for the guards: the simplex's points seen from x, or the widest spread of C's
-    // support points seen, if larger. Near a curved contact the simplex shrinks around x (points
+    // support points seen, if larger (curved supports). Near a curved contact the simplex shrinks around x (points
     // 5e-8 apart on a cylinder/cone's rim): relative to it alone a stall or failure at the
     // rounding limit looked unconverged and restarted the simplex, about 20 calls to come back to
     // the same point.

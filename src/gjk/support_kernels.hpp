@@ -78,6 +78,7 @@ inline RelativeFrame relative_frame(const Transform& pose_a, const Transform& po
 // Support of A - B in A's frame, where B's local frame maps into A's by x -> r x + t.
 template <class SA, class SB>
 struct PairSupport {
+    static constexpr bool exact = exact_support<SA> && exact_support<SB>;
     SA sa;
     SB sb;
     Mat3 r;
