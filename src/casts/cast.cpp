@@ -95,11 +95,9 @@ public:
         while (it < max_iterations) {
             Vec3 a, b;
             Vec3 p = sup_(v_, a, b);
-            if (it == 0) {
-                adopt_first_scale(a, b, p);
-                first_p_ = p;
-            }
+            if (it == 0) adopt_first_scale(a, b, p);
             if constexpr (kCurved) {
+                if (it == 0) first_p_ = p;
                 const Vec3 spread = p - first_p_;
                 const double spread_sq = dot(spread, spread);
                 if (spread_sq > extent_sq_) extent_sq_ = spread_sq;
@@ -274,8 +272,9 @@ private:
     // scale that brings v to about 1 (a power of two: exact).
     bool reached(double nv) const {
         double size_sq = std::max(sx_.max_norm_sq(), 0x1p-20 * extent_sq_), margin = margin_;
-        if (nv < 0x1p-800 && max_abs(sx_.v) > 0) [[unlikely]] {
-            const double k = std::ldexp(1.0, -std::ilogb(max_abs(sx_.v)));
+        const double m = nv < 0x1p-800 ? max_abs(sx_.v) : 0.0;
+        if (m > 0) [[unlikely]] {
+            const double k = std::ldexp(1.0, -std::ilogb(m));
             const Vec3 v = k * sx_.v;
             nv = dot(v, v);
             size_sq = 0;
@@ -366,10 +365,10 @@ private:
     static constexpr bool kCurved = !Support::exact;
 
     // C's size for the guards: the simplex's points seen from x, or the widest spread of C's
-    // support points seen, if larger (curved supports). Near a curved contact the simplex shrinks around x (points
-    // 5e-8 apart on a cylinder/cone's rim): relative to it alone a stall or failure at the
-    // rounding limit looked unconverged and restarted the simplex, about 20 calls to come back to
-    // the same point.
+    // support points seen, if larger (curved supports). Near a curved contact the simplex shrinks
+    // around x (points 5e-8 apart on a cylinder/cone's rim): relative to it alone a stall or
+    // failure at the rounding limit looked unconverged and restarted the simplex, about 20 calls
+    // to come back to the same point.
     double size_sq() const {
         const double s = sx_.max_norm_sq();
         return s > extent_sq_ ? s : extent_sq_;
@@ -551,7 +550,6 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     // ray cast does, whatever the tolerance left in v (at 1e-3 it tilted up to 0.06 rad on capsule
     // pairs and 0.11 on a sphere and a box; at 1e-1, 0.8). A direction that does not oppose the
     // motion (grazing) keeps the cast's normal.
-    // Each pose moved to toi.
     auto at_toi = [&](const Transform& pose, Vec3 translation) {
         Transform moved = pose;
         moved.translation = pose.translation + out.toi * translation;

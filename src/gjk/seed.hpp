@@ -13,18 +13,18 @@ namespace kairos::gjk_detail {
 
 // Fills s with the seed's points at the pair's poses, through Johnson's steps as support points
 // would go, after adopting the scale of the first one (set_scale: the pair, the points and the
-// margin). True with s holding a simplex apart from the origin; false with s empty (no seed, a
-// point not finite, or a simplex that holds or touches the origin: the loop then starts afresh,
-// and decides an intersection from support points only).
+// margin). s is left empty when there is no seed, a point is not finite, or the simplex holds or
+// touches the origin: the loop then starts afresh, and decides an intersection from support
+// points only.
 template <class Pair, class SetScale>
-bool seed_simplex(Pair& pair, const DistanceSeed& seed, Simplex& s, SetScale&& set_scale) {
+void seed_simplex(Pair& pair, const DistanceSeed& seed, Simplex& s, SetScale&& set_scale) {
     const int n = seed.count < 0 ? 0 : (seed.count > 4 ? 4 : seed.count);
-    if (n == 0) return false;
+    if (n == 0) return;
     Vec3 a[4], b[4];
     for (int i = 0; i < n; ++i) {
         a[i] = seed.a[i];
         b[i] = pair.r * seed.b[i] + pair.t;
-        if (!is_finite(a[i]) || !is_finite(b[i])) return false;
+        if (!is_finite(a[i]) || !is_finite(b[i])) return;
     }
     Vec3 w0 = a[0] - b[0];
     set_scale(a[0], b[0], w0);
@@ -37,15 +37,13 @@ bool seed_simplex(Pair& pair, const DistanceSeed& seed, Simplex& s, SetScale&& s
         if (o == Simplex::Outcome::Full || o == Simplex::Outcome::Failed) {
             s.bits = 0;
             s.last_all = 0;
-            return false;
+            return;
         }
     }
     if (!(dot(s.v, s.v) > kNearContact * s.max_norm_sq())) {
         s.bits = 0;
         s.last_all = 0;
-        return false;
     }
-    return true;
 }
 
 // The seed s leaves: its points at the caller's scale, B's taken back to B's frame.
