@@ -266,8 +266,8 @@ KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pos
  * algorithm (docs/algorithms.md); termination: RELATIVE_ERROR (depth within the tolerance),
  * REPEATED_SUPPORT (polytopes: exact to rounding), NEAR_CONTACT (the cores' difference is flat: a
  * segment crossing a segment, coplanar triangles), NO_PROGRESS or MAX_ITERATIONS (rounding or the
- * guard, at most min(max(max_iterations, 16), 128) support calls: the depth is then a bound, not
- * converged). */
+ * guard, at most min(max(max_iterations, 16), 128) support calls, min(max(max_iterations, 16), 252)
+ * for curved and general shapes: the depth is then a bound, not converged). */
 KAIROS_API int32_t kairos_signed_distance(const kairos_shape* a, const kairos_pose* pose_a,
                                           const kairos_shape* b, const kairos_pose* pose_b,
                                           const kairos_query_settings* settings, kairos_distance_result* out);

@@ -30,12 +30,33 @@ public:
     // seed (may be null): GJK's tetrahedron, tried as the start before C's axis extremes.
     Expander(Pair pair, Vec3 hint, uint32_t budget, const HeldTetrahedron* seed = nullptr)
         : pair_(pair), hint_(hint), budget_(budget), seed_(seed) {}
+    // Goes on from a smaller expansion that stopped on its guard (MaxIterations), with room for
+    // more vertices and `budget` support calls in all (the smaller one's count included): its
+    // polytope, scale and bounds are taken over, so none of its calls is made again.
+    template <int M>
+    Expander(const Expander<Pair, M>& from, uint32_t budget)
+        : pair_(from.pair_), hint_(from.hint_), budget_(budget), seed_(from.seed_), calls_(from.calls_),
+          size_(from.size_), flat_(from.flat_), interior_(from.interior_), upper_n_(from.upper_n_),
+          upper_x_(from.upper_x_), upper_(from.upper_), epoch_(from.epoch_), listing_(from.listing_),
+          n_near_(from.n_near_), n_written_(from.n_written_), n_free_(from.n_free_), nv_(from.nv_), nf_(from.nf_) {
+        static_assert(M <= MaxV);
+        for (int i = 0; i < nv_; ++i) verts_[i] = from.verts_[i];
+        for (int i = 0; i < nf_; ++i) {
+            faces_[i] = from.faces_[i], key_[i] = from.key_[i], plane_[i] = from.plane_[i];
+            mark_[i] = from.mark_[i], listed_[i] = from.listed_[i];
+        }
+        for (int i = 0; i < n_free_; ++i) free_[i] = from.free_[i];
+        for (int i = 0; i < n_near_; ++i) near_[i] = from.near_[i];
+        for (int i = 0; i < n_written_; ++i) written_[i] = from.written_[i];
+    }
 
     CoreDepth run(double tolerance) {
         CoreDepth out;
-        out.termination = build_tetrahedron(out);
-        if (out.termination != Termination::None) return finish(out);
-        double upper = INFINITY;  // smallest support value of C along a unit direction (upper_n_)
+        if (nv_ == 0) {  // else taken over from a smaller expansion
+            out.termination = build_tetrahedron(out);
+            if (out.termination != Termination::None) return finish(out);
+        }
+        double& upper = upper_;
         for (;;) {
             // The least key among the faces; resolving raises a key, so after a resolve the face
             // is still the least when its key stays at or below the runner-up's, and the
@@ -195,16 +216,6 @@ private:
             }
         }
         if (best > f.d) f.d = best;
-    }
-
-    // The weights of a resolved face's nearest point (f.l normalised when inside; equal thirds
-    // when rounding leaves no positive area).
-    static void weights(const Face& f, double l[3]) {
-        double sum = 0;
-        for (int c = 0; c < 3; ++c) sum += (l[c] = f.l[c]);
-        if (f.edge) return;
-        const double s = sum > 0 ? 1 / sum : 0;
-        for (int c = 0; c < 3; ++c) l[c] = sum > 0 ? (l[c] > 0 ? l[c] * s : 0) : 1.0 / 3;
     }
 
     // The point of face f's corners (C's, A's or B's: part) with weights l.
@@ -465,12 +476,8 @@ private:
         n_written_ = nh;
         return true;
     }
-    // The index k of the edge a -> b of face f (v[k] == a, v[k + 1] == b), or -1.
-    static int edge_index(const Face& f, int a, int b) {
-        for (int k = 0; k < 3; ++k)
-            if (f.v[k] == a && f.v[(k + 1) % 3] == b) return k;
-        return -1;
-    }
+    template <class, int>
+    friend class Expander;
 
     // Slot s: the face i, j, k on plane p, unresolved; its neighbours are set by the caller.
     void put(int s, int i, int j, int k, const Plane& p) {
@@ -564,6 +571,7 @@ private:
     Vec3 interior_;
     Vec3 upper_n_;
     Vertex upper_x_;
+    double upper_ = INFINITY;  // the smallest support value of C along a unit direction (upper_n_)
     Slots<Vertex, kMaxV> verts_;
     // Face i, its ranking distance (faces_[i].d) and its plane, kept apart so that the scans
     // over every face read them contiguously.

@@ -118,21 +118,21 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             using P = std::decay_t<decltype(pair)>;
-            CoreDepth d = Expander<P>(pair, c.center_offset, budget, &held).run(tolerance);
+            Expander<P> expander(pair, c.center_offset, budget, &held);
+            CoreDepth d = expander.run(tolerance);
             if constexpr (!(exact_support<decltype(P::sa)> && exact_support<decltype(P::sb)>)) {
                 // A deep overlap on a cylinder's side can use up the 128 steps: support points
                 // along nearly horizontal normals fall on the top or the bottom rim as rounding
-                // decides, and each refinement in angle needs a vertex on both. Such a pair starts
-                // again with room for 252 steps, on the heap (about 100 kB: too much for a
-                // stack); a caller's max_iterations still bounds the calls. Rare, so the repeated
-                // steps cost little overall.
+                // decides, and each refinement in angle needs a vertex on both; so can a round C
+                // (near-concentric curved shapes), whose depth the polytope approaches only as
+                // its vertices multiply. Such a pair goes on with room for 252 vertices, on the
+                // heap (about 100 kB: too much for a stack), from the polytope it has: it once
+                // started again from nothing, and near-concentric generic shapes spent a third of
+                // their time repeating the first 128 steps (a world step seconds long under the
+                // sanitizers, found by fuzzing). A caller's max_iterations bounds the calls in all.
                 if (d.termination == Termination::MaxIterations && max_iterations > budget) {
                     const uint32_t large = max_iterations < 252 ? max_iterations : 252;
-                    const auto expander =
-                        std::make_unique<Expander<P, kMaxVerticesLarge>>(pair, c.center_offset, large, &held);
-                    const uint32_t first = d.iterations;
-                    d = expander->run(tolerance);
-                    d.iterations += first;
+                    d = std::make_unique<Expander<P, kMaxVerticesLarge>>(expander, large)->run(tolerance);
                 }
             }
             return d;

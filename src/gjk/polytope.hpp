@@ -13,7 +13,8 @@ namespace epa_detail {
 
 inline constexpr double kEps = 2.220446049250313e-16;
 // Vertex capacities: the expansion's usual one (128 steps), and the large one a curved pair's
-// expansion retries with when it used up the usual one (252 steps: the most uint8_t indices allow).
+// expansion goes on in when it used up the usual one (252 steps in all: the most uint8_t indices
+// allow).
 inline constexpr int kMaxVertices = 4 + 128;
 inline constexpr int kMaxVerticesLarge = 256;
 inline constexpr int kNearFrom = 24;  // faces from which the expansion keeps its near faces apart
@@ -37,6 +38,23 @@ struct Face {
     int16_t adj[3];  // the face across edge k (v[k] -> v[k + 1]), by slot
     uint8_t back[3];  // the index of edge k in face adj[k] (where it runs v[k + 1] -> v[k])
 };
+
+// The weights of a resolved face's nearest point (f.l normalised when inside; equal thirds
+// when rounding leaves no positive area).
+inline void weights(const Face& f, double l[3]) {
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) sum += (l[c] = f.l[c]);
+    if (f.edge) return;
+    const double s = sum > 0 ? 1 / sum : 0;
+    for (int c = 0; c < 3; ++c) l[c] = sum > 0 ? (l[c] > 0 ? l[c] * s : 0) : 1.0 / 3;
+}
+
+// The index k of the edge a -> b of face f (v[k] == a, v[k + 1] == b), or -1.
+inline int edge_index(const Face& f, int a, int b) {
+    for (int k = 0; k < 3; ++k)
+        if (f.v[k] == a && f.v[(k + 1) % 3] == b) return k;
+    return -1;
+}
 
 struct Plane {
     Vec3 n;

@@ -300,9 +300,9 @@ TEST(Penetration, CurvedAndDeepPairs) {
 // distance stops short, at up to 5e-9 of the size), and the deepest points lie on those planes.
 //
 // Deep overlaps on the curved side (depth about half of C's radius) can use up the expansion's
-// usual 128 steps before the tolerance; it then starts again with room for 252 (penetration.cpp).
+// usual 128 steps before the tolerance; it then goes on with room for 252 (penetration.cpp).
 // Every answer is held to the tolerance, none may stop on the guard at the default 256
-// iterations, and the long expansions must occur (the retry runs).
+// iterations, and the long expansions must occur (the larger arrays are used).
 TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
     const uint64_t seed = 331;
     std::mt19937_64 rng(seed);
@@ -383,6 +383,58 @@ TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
     EXPECT_LT(curved_long, overlapping) << "seed " << seed;
     EXPECT_EQ(guard_stopped[0] + guard_stopped[1], 0) << "seed " << seed;
     EXPECT_GE(beyond_usual, 1) << "seed " << seed;
+}
+
+// Identical cones at one pose, as plain cones and as general shapes (the hull of a cone with
+// itself: the same support, through the general support mapping). C = A - A is symmetric and every
+// direction is about as deep, so the polytope approaches the depth only as its vertices multiply:
+// the expansion uses up its usual 128 steps and goes on in the larger arrays (penetration.cpp).
+// Truth: C's depth at the origin is the cone's least width, the least altitude of its axial
+// section, a triangle of base 2r and height 2h: min(2h, 4rh / sqrt(r^2 + 4h^2)). Along the axis the
+// answer is exact (1e-9); on the slanted side it stops on the guard (a bound, up to 8e-4 of the
+// depth off) and must stay within 2e-3 of it; the
+// expansion's support calls within min(max_iterations, 252) in all (it once started again from
+// nothing and made 382).
+TEST(Penetration, ConcentricConesGoOnInTheLargerArraysWithinTheCallBudget) {
+    const uint64_t seed = 4471;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, beyond_usual = 0, failures = 0;
+    double worst = 0;
+    auto fail = [&](const std::string& what) {
+        if (++failures <= 10) ADD_FAILURE() << what;
+    };
+    for (int i = 0; i < 40; ++i) {
+        const double r = 0.3 + u(rng), h = 0.3 + u(rng), scale = std::pow(10.0, 4 * u(rng) - 2);
+        const ConeShape cone(r * scale, h * scale);
+        const HullOfTwoShape general(cone, cone);
+        const double truth = scale * std::min(2 * h, 4 * r * h / std::sqrt(r * r + 4 * h * h));
+        const Transform x = pose({scale * (2 * u(rng) - 1), scale * u(rng), 0.0}, random_quat(rng));
+        for (int kind = 0; kind < 2; ++kind) {
+            const Shape& s = kind ? static_cast<const Shape&>(general) : cone;
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "concentric cones seed %llu case %d %s truth %.17g",
+                          static_cast<unsigned long long>(seed), i, kind ? "general" : "cone", truth);
+            const std::string at = buf;
+            const DistanceResult d = gjk_distance(s, x, s, x, 1e-10, 256);
+            const DistanceResult r1 = signed_distance(s, x, s, x, 1e-10, 256);
+            ++cases;
+            const uint32_t expansion_calls = r1.iterations - d.iterations;
+            beyond_usual += expansion_calls > 128;
+            if (!(expansion_calls <= 252)) fail(describe("expansion support calls past 252", expansion_calls, at));
+            const double err = std::fabs(-r1.distance - truth) / truth;
+            worst = std::max(worst, err);
+            const bool guard = r1.termination == Termination::MaxIterations;
+            if (!(err <= (guard ? 2e-3 : 1e-9))) fail(describe("depth off (relative)", err, at));
+            if (!(std::fabs(length(r1.axis) - 1) <= 1e-12)) fail(describe("axis not unit", length(r1.axis), at));
+        }
+    }
+    std::printf("concentric cones: %d signed distances, %d past the usual 128 calls, worst depth error %.3g\n", cases,
+                beyond_usual, worst);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    // The larger arrays are reached (the slanted side gives the depth), and not always (the axis).
+    EXPECT_GE(beyond_usual, cases / 4) << "seed " << seed;
+    EXPECT_LE(beyond_usual, cases * 3 / 4) << "seed " << seed;
 }
 
 // Cores whose difference is flat: capsules whose segments cross (the depth is the radii), coplanar
