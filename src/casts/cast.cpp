@@ -492,7 +492,8 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
 }
 
 CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
-                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations) {
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
+                      bool overlap_normal) {
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const RelativeFrame frame = relative_frame(pose_a, pose_b);
@@ -538,6 +539,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     // midpoint (touching keeps the rule above, opposing the relative motion; so does a non-finite
     // answer, never expected, so that a world's contacts stay finite whatever the expansion gives).
     if (out.toi == 0) {
+        if (!overlap_normal) return out;
         const DistanceResult sd = signed_distance(a, pose_a, b, pose_b, tolerance, max_iterations);
         if (sd.distance < 0 && is_finite(sd.axis) && is_finite(sd.point_a + sd.point_b)) {
             out.normal = sd.axis;

@@ -43,7 +43,11 @@ CastResult ray_cast(const Shape& s, const Transform& pose, Vec3 origin, Vec3 tra
 // -r (unit): the contact opposes the relative motion, as it does for every later hit (normal . r < 0),
 // so a solver that removes the approach velocity along the normal stops the motion into the overlap.
 // With r = 0 it is the direction from A's local origin toward B's, or world +z when they coincide.
+// Overlapping by more than touching, the normal and point are the signed distance's (the minimum
+// translation's axis and the deepest points' midpoint) unless overlap_normal is false: a caller
+// that uses only the verdict and toi (the motion cast's checks) does not pay for the expansion.
 CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
-                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations);
+                      const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
+                      bool overlap_normal = true);
 
 }  // namespace kairos

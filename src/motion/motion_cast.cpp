@@ -90,9 +90,9 @@ struct Body {
     // from its local origin, over every time in [t, t + span], at the pose `p` it has at t: the
     // body turns by phi = angle * span about `axis`, and d.R(phi) y = (d + phi m).y + r(phi) with
     // m = d x axis and |r| <= rho |m| (phi - sin phi + 1 - cos phi); (d + phi m).y is convex in
-    // phi, so its largest value over the span is at an end. Two supports.
-    double support_bound(Vec3 d, const Transform& p, double span) const {
-        const Vec3 s0 = p.rotation * support(*shape, p.to_local_direction(d));
+    // phi, so its largest value over the span is at an end. s0: the support along d at p (world
+    // orientation, from the origin), which the caller has already: one more support.
+    double support_bound(Vec3 d, const Transform& p, double span, Vec3 s0) const {
         double h = dot(d, s0);
         if (!rotates || !(span > 0)) return h;
         const double phi = motion->angle() * span;
@@ -126,7 +126,8 @@ CastResult fattened_cast(const Body& x, const Transform& px, double rx, Vec3 tx,
     const MinkowskiSumShape fat_x(*x.shape, disk_x), fat_y(*y.shape, disk_y);
     const Shape& sx = rx > 0 ? static_cast<const Shape&>(fat_x) : *x.shape;
     const Shape& sy = ry > 0 ? static_cast<const Shape&>(fat_y) : *y.shape;
-    return shape_cast(sx, px, tx, sy, py, ty, tolerance, max_iterations);
+    // At toi 0 the caller halves its window and needs no normal: no signed distance is run.
+    return shape_cast(sx, px, tx, sy, py, ty, tolerance, max_iterations, false);
 }
 
 // The loop over windows of one rotating pair (at least one motion turns); run() once.
@@ -187,7 +188,8 @@ private:
         iterations_ += d.iterations;
         ++stats_.distances;
         if (d.intersecting && d.termination == Termination::FullSimplex) {
-            const CastResult c = shape_cast(a_, pa_, Vec3{}, b_, pb_, Vec3{}, kMinTolerance, max_iterations_);
+            const CastResult c =
+                shape_cast(a_, pa_, Vec3{}, b_, pb_, Vec3{}, kMinTolerance, max_iterations_, false);  // the verdict only
             iterations_ += c.iterations;
             ++stats_.casts;
             if (!c.hit) {
@@ -265,7 +267,7 @@ private:
     //     distance over the speed (a rod turning by nearly pi past a ball 4e-8 away ran out of its
     //     4096 steps). Over a span the separation along n is at least the smaller end value of
     //     the (linear) centre term minus each body's support bound over the span
-    //     (Body::support_bound), which costs two supports per turning body and proves a span about
+    //     (Body::support_bound), which costs a support per turning body and proves a span about
     //     sqrt(distance) long. A few spans are tried, longest first.
     double advancement() const {
         const Vec3 n = dist_.axis;
@@ -287,8 +289,8 @@ private:
             if (curvature > 0) span = std::fmin(span, std::fmax(4 * h, std::sqrt(2 * sep / curvature)));
             for (int trial = 0; trial < 6 && span > h; ++trial, span *= 0.25) {
                 const double centre = std::fmin(dot(n, c0), dot(n, c0 + span * linear_rel_));
-                const double lower = centre - body_a_.support_bound(n, pa_, span) -
-                                     body_b_.support_bound(-n, pb_, span) - kRounding * size_;
+                const double lower = centre - body_a_.support_bound(n, pa_, span, sa) -
+                                     body_b_.support_bound(-n, pb_, span, sb) - kRounding * size_;
                 if (lower > delta_) return span;
             }
         }

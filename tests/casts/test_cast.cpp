@@ -12,6 +12,7 @@
 
 #include "cast_test_support.hpp"
 #include "casts/cast.hpp"
+#include "gjk/penetration.hpp"
 
 using namespace kairos;
 using namespace cast_test;
@@ -317,6 +318,59 @@ TEST(ShapeCast, OverlapAtStartAndZeroTranslation) {
     EXPECT_FALSE(r.hit);
     EXPECT_EQ(r.toi, 1);
     EXPECT_EQ(r.termination, Termination::Separated);
+}
+
+// overlap_normal false (the motion cast's verdict-only casts): the same hit, toi, iterations and
+// termination as the full cast, the same normal and point for every later hit, and at toi 0 only
+// the signed distance's axis is left out (truth for the full cast: signed_distance itself). Every
+// pair of kinds, B started 0.2 .. 1.4 sums of radii from A, so that about a third overlap.
+TEST(ShapeCast, VerdictOnlyCastsAgreeWithTheFullCast) {
+    const uint64_t seed = 8123;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, overlapping = 0, later = 0, failures = 0;
+    auto fail = [&](const char* what, int k) {
+        if (++failures <= 10) ADD_FAILURE() << what << " (seed " << seed << " case " << k << ")";
+    };
+    for (Kind ka : kAllKinds)
+        for (Kind kb : kAllKinds)
+            for (int i = 0; i < 12; ++i) {
+                const Solid a = random_solid(rng, ka), b = random_solid(rng, kb);
+                const double sum = a.radius + b.radius;
+                const Transform pa = make_transform(random_unit(rng), random_quat(rng));
+                const Transform pb =
+                    make_transform(pa.translation + (0.2 + 1.2 * u(rng)) * sum * random_unit(rng), random_quat(rng));
+                // Most of B's motions aim at A (later hits); one in four is A's (no relative motion).
+                const Vec3 ta = 0.3 * sum * random_unit(rng);
+                const Vec3 tb =
+                    (i % 4 == 0) ? ta : ta + 1.5 * (pa.translation - pb.translation) + 0.3 * sum * random_unit(rng);
+                const CastResult full = shape_cast(*a.shape, pa, ta, *b.shape, pb, tb, 1e-8, 256);
+                const CastResult verdict = shape_cast(*a.shape, pa, ta, *b.shape, pb, tb, 1e-8, 256, false);
+                const int k = cases++;
+                if (full.hit != verdict.hit || full.toi != verdict.toi || full.iterations != verdict.iterations ||
+                    full.termination != verdict.termination)
+                    fail("verdict, toi, iterations or termination differ", k);
+                if (!full.hit) continue;
+                if (full.toi > 0) {
+                    ++later;
+                    if (!(full.normal == verdict.normal) || !(full.point == verdict.point))
+                        fail("normal or point differ on a later hit", k);
+                    continue;
+                }
+                ++overlapping;
+                if (!(std::fabs(length(verdict.normal) - 1) <= 1e-12)) fail("verdict-only normal not unit", k);
+                // Two balls (point cores) take their closed form, not the signed distance.
+                const bool balls =
+                    (ka == Kind::Point || ka == Kind::Sphere) && (kb == Kind::Point || kb == Kind::Sphere);
+                const DistanceResult sd = signed_distance(*a.shape, pa, *b.shape, pb, 1e-8, 256);
+                if (!balls && sd.distance < 0 && !(full.normal == sd.axis))
+                    fail("full cast's normal is not the depth's axis", k);
+            }
+    std::printf("verdict-only casts: %d cases, %d overlapping at the start, %d later hits\n", cases, overlapping,
+                later);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(overlapping, cases / 5) << "seed " << seed;
+    EXPECT_GT(later, cases / 10) << "seed " << seed;
 }
 
 TEST(ShapeCast, TinyAndHugeTranslations) {
