@@ -238,10 +238,19 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     // 9270 wide, both about the origin: a sliver of A - B held the origin by 0.2, the estimate
     // stopped 0.22 away with no lower bound, and the verdict was "apart" for shapes overlapping
     // by 4622; found by fuzzing).
+    //
+    // A lower bound that reaches half the estimate and stands clear of its own rounding (v.w is
+    // rounded by some eps |w|) is a certificate, not a rounding stop: every point of A - B lies at
+    // least that far from the origin, so the held signs are the ones rounding decided. A cone
+    // 1.15e6 long beside a capsule's segment 0.0066 away: a sliver of A - B "held" the origin,
+    // the bound proved 0.006619, and the held verdict made the signed distance 0.0066 too deep
+    // (found by fuzzing).
     if (!intersecting && s.held) {
         const double est = s.bits == 0 || best_vv < dot(s.v, s.v) ? best_vv : dot(s.v, s.v);
         const bool unsupported = 4 * lower_num < est * lower_den;
-        if (est > 1e-18 * s.held_extent_sq || unsupported) {
+        constexpr double k = 64 * 2.220446049250313e-16;
+        const bool certified = !unsupported && lower_num > (k * k) * dot(lower_w, lower_w) * lower_den;
+        if ((est > 1e-18 * s.held_extent_sq && !certified) || unsupported) {
             s.take_held();
             out.termination = Termination::FullSimplex;
             intersecting = true;

@@ -437,6 +437,168 @@ TEST(Penetration, ConcentricConesGoOnInTheLargerArraysWithinTheCallBudget) {
     EXPECT_LE(beyond_usual, cases * 3 / 4) << "seed " << seed;
 }
 
+// A needle cone (the hull of a unit ball and a point 1e3 .. 1e6 away) and a capsule whose segment
+// lies a gap g (1e-6 .. 1e-1) from it, placed so that its nearest feature is known (below): the
+// cores are g apart and the signed distance is g - r_B (the capsule's radius 1: overlapping by 1 - g). A sliver of A - B once "held" the origin while
+// GJK's lower bound certified the gap, and the answer was -1 (the gap read as touching: found by
+// fuzzing with the point 1.15e6 away and g = 0.0066). Both argument orders.
+TEST(Penetration, ANeedleConesRoundEndBesideACapsule) {
+    const uint64_t seed = 6007;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, failures = 0;
+    double worst = 0;
+    auto fail = [&](const std::string& what) {
+        if (++failures <= 10) ADD_FAILURE() << what;
+    };
+    const SphereShape ball(1);
+    const CapsuleShape capsule(1, 1);
+    for (int i = 0; i < 120; ++i) {
+        const double length_to_tip = std::pow(10.0, 3 + 3 * u(rng)), gap = std::pow(10.0, -6 + 5 * u(rng));
+        const Vec3 toward_tip = random_unit(rng);
+        const ShapePtr tip =
+            hull({{length_to_tip * toward_tip.x, length_to_tip * toward_tip.y, length_to_tip * toward_tip.z}});
+        const HullOfTwoShape cone(*tip, ball);
+        // Even cases: the segment's centre behind the ball (120 to 180 degrees from the tip's
+        // direction), the segment across the line to the ball's centre. Odd cases: the segment
+        // along the outward normal of the cone's flank at a point Q of it (between the ball's
+        // tangent point T, whose normal T is the flank's, and the tip), its near end at Q + g T:
+        // the flank is the nearest feature, g away (the finding's case: a needle face of A - B).
+        const Vec3 side = normalized_or(cross(toward_tip, random_unit(rng)), {1, 0, 0});  // across the tip's line
+        Vec3 centre, along;
+        if (i % 2 == 0) {
+            const double behind = 0.5 + 0.5 * u(rng);  // -cos of the angle to the tip's direction
+            const Vec3 back = -behind * toward_tip + std::sqrt(1 - behind * behind) * side;
+            centre = (1 + gap) * back;
+            along = normalized_or(cross(back, random_unit(rng)), side);
+        } else {
+            const double c_tip = 1 / length_to_tip;
+            const Vec3 t = c_tip * toward_tip + std::sqrt(1 - c_tip * c_tip) * side;
+            const Vec3 q = t + std::pow(10.0, -3 * u(rng)) * (length_to_tip * toward_tip - t);
+            centre = q + (gap + 1) * t;
+            along = t;
+        }
+        // The capsule's local z (its segment) along `along`: a rotation taking z to it.
+        const Vec3 z{0, 0, 1}, axis = cross(z, along);
+        const double s = length(axis), c = dot(z, along);
+        const double half = 0.5 * std::atan2(s, c), k = s > 1e-12 ? std::sin(half) / s : 0;
+        const Quat q{k * axis.x, k * axis.y, k * axis.z, s > 1e-12 ? std::cos(half) : 1.0};  // z or -z: alike
+        const Vec3 base{u(rng), u(rng), u(rng)};
+        const Transform xa = pose(base, Quat{0, 0, 0, 1}), xb = pose(base + centre, q);
+        const double truth = gap - 1;
+        for (int order = 0; order < 2; ++order) {
+            const Shape& p = order ? static_cast<const Shape&>(capsule) : cone;
+            const Shape& r = order ? static_cast<const Shape&>(cone) : capsule;
+            const DistanceResult d = signed_distance(p, order ? xb : xa, r, order ? xa : xb, 1e-10, 256);
+            ++cases;
+            char buf[200];
+            std::snprintf(buf, sizeof buf,
+                          "needle cone seed %llu case %d order %d tip %.3g gap %.3g: %.17g, truth %.17g",
+                          static_cast<unsigned long long>(seed), i, order, length_to_tip, gap, d.distance, truth);
+            // The cone's size sets the rounding (1e-9 of it, the stated accuracy), and never more
+            // than a tenth of the gap: the gap itself must show.
+            const double err = std::fabs(d.distance - truth);
+            worst = std::max(worst, err / length_to_tip);
+            if (!(err <= std::min(1e-9 * length_to_tip, 0.1 * gap) + 1e-12)) fail(buf);
+        }
+    }
+    std::printf("needle cones beside capsules: %d signed distances, worst error %.3g of the cone's length\n", cases,
+                worst);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+}
+
+// The fuzz finding itself (a cone 1.15e6 long, the capsule's segment 0.0066 from its flank, end
+// on) and 300 variations of it: the tip's direction turned by up to 0.05 rad, its distance 1e5 ..
+// 2e6, the capsule moved by up to 0.05 and turned by up to 0.5 rad. Truth: the distance from the
+// segment to the cone, in long double, by a ternary search along the segment of the distance from
+// a point to the hull of a ball and a point (a plane problem in the point's axial half-plane: the
+// ball's exposed arc or the flank, the tangent segment from T, T . t = 1 / L, to the tip).
+TEST(Penetration, TheNeedleConeFindingAndItsNeighbours) {
+    using LD = long double;
+    struct V {
+        LD x, y, z;
+    };
+    auto sub = [](V a, V b) { return V{a.x - b.x, a.y - b.y, a.z - b.z}; };
+    auto dotl = [](V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    // Distance from X to hull(unit ball at the origin, the point L t), t unit; 0 inside.
+    auto to_cone = [&](V X, V t, LD L) -> LD {
+        const LD a = dotl(X, t);
+        const V radial = sub(X, V{a * t.x, a * t.y, a * t.z});
+        const LD rho = std::sqrt(dotl(radial, radial)), r = std::sqrt(a * a + rho * rho);
+        const LD ta = 1 / L, tr = std::sqrt(1 - ta * ta);  // T in (axial, radial) coordinates
+        if (r <= 1) return 0;
+        // The flank: the segment from T to (L, 0); its outward normal is T.
+        const LD ea = L - ta, er = -tr;
+        LD u = ((a - ta) * ea + (rho - tr) * er) / (ea * ea + er * er);
+        u = u < 0 ? 0 : (u > 1 ? 1 : u);
+        const LD fa = ta + u * ea - a, fr = tr + u * er - rho;
+        const LD flank = std::sqrt(fa * fa + fr * fr);
+        const bool below = a * ta + rho * tr <= 1 && a >= 0 && a <= L;  // inside the flank's side
+        if (below) return 0;
+        const bool on_arc = a / r <= ta;  // the radial projection lies on the exposed arc
+        return on_arc ? std::min(r - 1, flank) : flank;
+    };
+    const uint64_t seed = 9901;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const SphereShape ball(1);
+    const CapsuleShape capsule(1, 1);
+    int cases = 0, failures = 0, overlapping = 0;
+    double worst = 0;
+    for (int i = 0; i <= 300; ++i) {
+        Vec3 tip_dir = normalized_or(Vec3{1000000, -500000, 250000}, {1, 0, 0});
+        double L = length(Vec3{1000000, -500000, 250000});
+        Vec3 offset{0, 0.0019531548027771, 2.0312809948882276};
+        Quat turn{0, 0, 0, 1};
+        if (i > 0) {  // case 0 is the finding
+            tip_dir = normalized_or(tip_dir + 0.05 * Vec3{u(rng), u(rng), u(rng)}, tip_dir);
+            L = std::pow(10.0, 5.65 + 0.65 * u(rng));
+            offset = offset + 0.05 * Vec3{u(rng), u(rng), u(rng)};
+            turn = normalized(Quat{0.25 * u(rng), 0.25 * u(rng), 0.25 * u(rng), 1});
+        }
+        const ShapePtr tip = hull({{L * tip_dir.x, L * tip_dir.y, L * tip_dir.z}});
+        const HullOfTwoShape cone(*tip, ball);
+        const Transform xa = pose({-4, -4, -4}, Quat{0, 0, 0, 1}), xb = pose(Vec3{-4, -4, -4} + offset, turn);
+        // The segment in A's frame (A unturned at (-4, -4, -4)).
+        const Vec3 e = xb.rotation * Vec3{0, 0, 1};
+        const V p0{offset.x - e.x, offset.y - e.y, offset.z - e.z}, p1{offset.x + e.x, offset.y + e.y, offset.z + e.z};
+        const V t{tip_dir.x, tip_dir.y, tip_dir.z};
+        auto at = [&](LD s) { return V{p0.x + s * (p1.x - p0.x), p0.y + s * (p1.y - p0.y), p0.z + s * (p1.z - p0.z)}; };
+        LD lo = 0, hi = 1;
+        for (int k = 0; k < 200; ++k) {
+            const LD m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+            if (to_cone(at(m1), t, L) < to_cone(at(m2), t, L))
+                hi = m2;
+            else
+                lo = m1;
+        }
+        const LD core = std::min({to_cone(at(0.5L * (lo + hi)), t, L), to_cone(at(0), t, L), to_cone(at(1), t, L)});
+        if (!(core > 0)) continue;  // the segment meets the cone: no plane problem's gap to test
+        const double truth = double(core) - 1;
+        for (int order = 0; order < 2; ++order) {
+            const DistanceResult d = order ? signed_distance(capsule, xb, cone, xa, 1e-10, 256)
+                                           : signed_distance(cone, xa, capsule, xb, 1e-10, 256);
+            ++cases;
+            overlapping += truth < 0;
+            const double err = std::fabs(d.distance - truth);
+            worst = std::max(worst, err / L);
+            // 1e-9 of the cone's length (the stated accuracy), and a third of the gap: the gap shows.
+            if (!(err <= std::min(1e-9 * L, double(core) / 3))) {
+                if (++failures <= 10)
+                    ADD_FAILURE() << "needle cone finding seed " << seed << " case " << i << " order " << order << ": "
+                                  << d.distance << ", truth " << truth << " (cores " << double(core)
+                                  << " apart, termination " << int(d.termination) << ")";
+            }
+        }
+    }
+    std::printf(
+        "needle cone finding and neighbours: %d signed distances (%d overlapping), worst error %.3g of the "
+        "cone's length\n",
+        cases, overlapping, worst);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(cases, 400) << "seed " << seed;
+}
+
 // Cores whose difference is flat: capsules whose segments cross (the depth is the radii), coplanar
 // triangles overlapping (depth 0: touching), a sphere centred on a capsule's segment.
 TEST(Penetration, FlatCoreDifferences) {

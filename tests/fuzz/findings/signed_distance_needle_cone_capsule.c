@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Fuzz finding (fuzz_queries, 2026-11-28, open): A is the hull of a unit sphere and a point
+/* Fuzz finding (fuzz_queries, 2026-11-28; fixed the same day, see README.md): A is the hull of a unit sphere and a point
  * 1.15e6 away (a cone 1.15e6 long, aspect 1e6, inside the accuracy ranges), B a capsule of radius
  * 1 and half height 1 overlapping A's round end. kairos_signed_distance at tolerance 1e-10 (and
  * 1e-6) answers -1 exactly (termination 5, repeated support, 46 iterations) on the right axis,
