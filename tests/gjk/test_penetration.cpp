@@ -439,9 +439,9 @@ TEST(Penetration, ConcentricConesGoOnInTheLargerArraysWithinTheCallBudget) {
 
 // A needle cone (the hull of a unit ball and a point 1e3 .. 1e6 away) and a capsule whose segment
 // lies a gap g (1e-6 .. 1e-1) from it, placed so that its nearest feature is known (below): the
-// cores are g apart and the signed distance is g - r_B (the capsule's radius 1: overlapping by 1 - g). A sliver of A - B once "held" the origin while
-// GJK's lower bound certified the gap, and the answer was -1 (the gap read as touching: found by
-// fuzzing with the point 1.15e6 away and g = 0.0066). Both argument orders.
+// cores are g apart and the signed distance is g - r_B (the capsule's radius 1: overlapping by
+// 1 - g). Both argument orders. The fuzz finding of such a pair (a gap read as touching) is the
+// next test's; these constructed gaps passed before its fix too.
 TEST(Penetration, ANeedleConesRoundEndBesideACapsule) {
     const uint64_t seed = 6007;
     std::mt19937_64 rng(seed);
