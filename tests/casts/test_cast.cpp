@@ -320,22 +320,24 @@ TEST(ShapeCast, OverlapAtStartAndZeroTranslation) {
     EXPECT_EQ(r.termination, Termination::Separated);
 }
 
-// overlap_normal false (the motion cast's verdict-only casts): the same hit, toi, iterations and
-// termination as the full cast, the same normal and point for every later hit, and at toi 0 only
-// the signed distance's axis is left out (truth for the full cast: signed_distance itself). Every
-// pair of kinds, B started 0.2 .. 1.4 sums of radii from A, so that about a third overlap.
+// overlap_normal false (the motion cast's verdict-only casts): the verdict against the long-double
+// cast oracle (hit, an overlap at the start at toi 0, never later than the contact), and the same
+// hit, toi, iterations and termination as the full cast, the same normal and point for every later
+// hit; at toi 0 only the signed distance's axis is left out (the full cast's normal must be
+// signed_distance's). Every pair of kinds, B started 0.2 .. 1.4 sums of radii from A, so that
+// about a third overlap.
 TEST(ShapeCast, VerdictOnlyCastsAgreeWithTheFullCast) {
     const uint64_t seed = 8123;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    int cases = 0, overlapping = 0, later = 0, failures = 0;
+    int cases = 0, overlapping = 0, later = 0, failures = 0, judged_cases = 0;
     auto fail = [&](const char* what, int k) {
         if (++failures <= 10) ADD_FAILURE() << what << " (seed " << seed << " case " << k << ")";
     };
     for (Kind ka : kAllKinds)
         for (Kind kb : kAllKinds)
             for (int i = 0; i < 12; ++i) {
-                const Solid a = random_solid(rng, ka), b = random_solid(rng, kb);
+                Solid a = random_solid(rng, ka), b = random_solid(rng, kb);
                 const double sum = a.radius + b.radius;
                 const Transform pa = make_transform(random_unit(rng), random_quat(rng));
                 const Transform pb =
@@ -347,6 +349,19 @@ TEST(ShapeCast, VerdictOnlyCastsAgreeWithTheFullCast) {
                 const CastResult full = shape_cast(*a.shape, pa, ta, *b.shape, pb, tb, 1e-8, 256);
                 const CastResult verdict = shape_cast(*a.shape, pa, ta, *b.shape, pb, tb, 1e-8, 256, false);
                 const int k = cases++;
+                // The verdict against the long-double oracle (an independent truth): the hit, an
+                // overlap at the start at toi 0, and never later than the true contact.
+                place(a.body, pa);
+                place(b.body, pb);
+                const cast_oracle::Truth t = cast_oracle::toi(a.body, b.body, p3(ta), p3(tb));
+                // Judged where the oracle decides: M with volume (else hits have measure zero) and a relative
+                // motion (the oracle casts along it).
+                const bool judged = !t.grazing && (solid_kind(ka) || solid_kind(kb)) && i % 4 != 0;
+                judged_cases += judged;
+                if (judged && verdict.hit != t.hit) fail("verdict-only hit differs from the oracle's", k);
+                if (judged && t.start_overlap && verdict.toi != 0) fail("an overlap at the start not at toi 0", k);
+                if (verdict.hit && t.hit && !(verdict.toi <= double(t.toi) + 1e-6))
+                    fail("verdict-only toi later than the oracle's", k);
                 if (full.hit != verdict.hit || full.toi != verdict.toi || full.iterations != verdict.iterations ||
                     full.termination != verdict.termination)
                     fail("verdict, toi, iterations or termination differ", k);
@@ -366,11 +381,12 @@ TEST(ShapeCast, VerdictOnlyCastsAgreeWithTheFullCast) {
                 if (!balls && sd.distance < 0 && !(full.normal == sd.axis))
                     fail("full cast's normal is not the depth's axis", k);
             }
-    std::printf("verdict-only casts: %d cases, %d overlapping at the start, %d later hits\n", cases, overlapping,
-                later);
+    std::printf("verdict-only casts: %d cases (%d judged by the oracle), %d overlapping at the start, %d later hits\n",
+                cases, judged_cases, overlapping, later);
     EXPECT_EQ(failures, 0) << "seed " << seed;
     EXPECT_GT(overlapping, cases / 5) << "seed " << seed;
     EXPECT_GT(later, cases / 10) << "seed " << seed;
+    EXPECT_GT(judged_cases, cases / 2) << "seed " << seed;
 }
 
 TEST(ShapeCast, TinyAndHugeTranslations) {
