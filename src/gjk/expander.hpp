@@ -73,21 +73,21 @@ public:
                 if (faces_[f].resolved) break;
             }
             const Face& face = faces_[f];  // expand changes no face when it fails
-            if (calls_ >= budget_ || nv_ == kMaxV) return finish(face, Termination::MaxIterations, out);
+            if (calls_ >= budget_ || nv_ == kMaxV) return finish(face, Termination::MaxIterations, tolerance, out);
             Vertex x;
             x.w = support(face.n, x);
             const double h = dot(face.n, x.w);
             if (h < upper) upper = h, upper_n_ = face.n, upper_x_ = x;  // depth <= C's support along any unit n
             const double gap = h - face.off;
             // Support point on the face's plane within the rounding of points of C's size.
-            if (gap <= floor()) return finish_converged(face, x, tolerance, Termination::RepeatedSupport, out);
+            if (gap <= floor()) return finish(face, Termination::RepeatedSupport, tolerance, out);
             // The face's own support value first (its axis gives the depth itself, B moved by it
             // along the axis touches A), then the smallest seen, which holds the same for its
             // own axis: both bound the depth from above, the face's key from below.
             if (face.d >= 0 && h - face.d <= tolerance * h)
-                return finish_converged(face, x, tolerance, Termination::RelativeError, out);
+                return finish(face, Termination::RelativeError, tolerance, out);
             if (face.d >= 0 && upper - face.d <= tolerance * upper) return finish_upper(Termination::RelativeError, out);
-            if (!expand(x, f)) return finish(face, Termination::NoProgress, out);
+            if (!expand(x, f)) return finish(face, Termination::NoProgress, tolerance, out);
             if (n_near_ >= 0 || nf_ >= kNearFrom) keep_near(upper);
         }
     }
@@ -492,30 +492,6 @@ private:
     }
 
     // The nearest face's nearest point to the origin, as a combination of its corners.
-    // A converged face (x: C's support point along its normal). When the origin's nearest point on
-    // it lies on an edge, the axis reported is the direction to that point, not the face's normal,
-    // and the stopping rules tested the normal: the axis must then be checked by a support call
-    // of its own. Should C reach farther along it than the depth (a cone 1e4 times wider than
-    // thick, in one argument order, by 1.2 % of the depth: found by fuzzing), the better of the
-    // two directions is reported with its own support value (each is an upper bound of the depth,
-    // exact along its axis).
-    [[gnu::noinline]] CoreDepth finish_converged(const Face& f, const Vertex& x, double tolerance, Termination t, CoreDepth& out) {
-        if (!f.edge || !(f.d > 0)) return finish(f, t, out);
-        const Vec3 q = combine(f, f.l, &Vertex::w);  // an edge point: f.l are its weights
-        const Vec3 qn = normalized_or(q, f.n);
-        Vertex y;
-        const double hq = dot(qn, support(qn, y));
-        if (hq - f.d <= std::fmax(floor(), tolerance * hq)) return finish(f, t, out);
-        const double hn = dot(f.n, x.w);
-        const bool normal = hn < hq;
-        const Vertex& v = normal ? x : y;
-        out.n = normal ? f.n : qn;
-        out.depth = normal ? hn : hq;
-        out.point_a = v.a;
-        out.point_b = v.a - out.depth * out.n;
-        out.termination = t;
-        return finish(out);
-    }
     // The smallest support value seen and its axis: an upper bound of the depth (B moved by it
     // along upper_n_ no longer overlaps), exact along that axis.
     [[gnu::noinline]] CoreDepth finish_upper(Termination t, CoreDepth& out) {
@@ -527,23 +503,41 @@ private:
         out.termination = t;
         return finish(out);
     }
-    [[gnu::noinline]] CoreDepth finish(const Face& f, Termination t, CoreDepth& out) {
+    // The nearest face's nearest point to the origin, as a combination of its corners. On an
+    // edge, the axis reported is the direction to that point, not the face's normal, which the
+    // stopping rules tested: a support call checks it (but not at the guard, whose depth is a
+    // bound). Should C reach farther along it than the depth (a cone 1e4 times wider than thick,
+    // by 1.2 % of the depth, in one argument order; a ball centred on a hull's apex, by 13 times:
+    // found by fuzzing), the smaller of its support value and the smallest seen is reported with
+    // its axis (each bounds the depth from above, exactly along its axis). A point within
+    // rounding of the origin has no direction: the face's normal then.
+    [[gnu::noinline]] CoreDepth finish(const Face& f, Termination t, double tolerance, CoreDepth& out) {
         // Stopped before the polytope held the origin (rounding, or the guard): the smallest
         // support value seen.
-        if (f.d < 0 && dot(upper_n_, upper_n_) > 0) return finish_upper(t, out);
+        const bool seen = dot(upper_n_, upper_n_) > 0;
+        if (f.d < 0 && seen) return finish_upper(t, out);
         double l[3];
         weights(f, l);
         out.point_a = combine(f, l, &Vertex::a);
         out.point_b = combine(f, l, &Vertex::b);
         out.depth = f.d > 0 ? f.d : 0;
         out.n = f.n;
+        out.termination = t;
         // The origin still beyond the polytope (the guard, with no support value seen): depth 0 at
         // one point of the nearest face, whose two parts stand for the common point.
         if (!(f.d > 0)) out.point_b = out.point_a;
-        // Nearest on an edge: the direction to that point, so that a - b = depth n holds.
         const Vec3 q = combine(f, l, &Vertex::w);
-        if (f.edge) out.n = normalized_or(q, f.n);
-        out.termination = t;
+        if (!f.edge || !(length(q) > floor())) return finish(out);
+        out.n = normalized_or(q, f.n);  // so that a - b = depth n holds
+        if (t == Termination::MaxIterations) return finish(out);
+        if (calls_ >= budget_) return seen ? finish_upper(t, out) : finish(out);
+        Vertex y;
+        const double hq = dot(out.n, support(out.n, y));
+        if (hq - f.d <= std::fmax(floor(), tolerance * hq)) return finish(out);
+        if (seen && upper_ <= hq) return finish_upper(t, out);
+        out.depth = hq;
+        out.point_a = y.a;
+        out.point_b = y.a - hq * out.n;
         return finish(out);
     }
     // Back to the caller's scale. A flat C has depth 0; its deepest points are a common point of

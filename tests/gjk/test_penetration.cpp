@@ -772,3 +772,69 @@ TEST(Penetration, CapsulesSunkIntoFlatCones) {
     EXPECT_GT(j.overlapping, j.cases * 9 / 10);
     EXPECT_LT(j.unconverged, j.cases / 4);  // at the tolerance 1e-12 of check(), beyond curved shapes' rounding
 }
+
+// CI's fuzz finding of 2026-11-28: a unit ball centred on the apex of a pointed hull (the hull of
+// a flat polygon 3.09 away and a box 2.2e-16 wide around the centre) answered the right depth, 1,
+// on an axis along which the shapes overlap by 13.5. The expansion ended on a face whose nearest
+// point to the origin lay on an edge through the origin, to rounding, and reported the direction
+// to that point: noise. Balls and points on the apexes of such hulls (the apex a vertex, or a box
+// 2.2e-16 .. 1e-13 of the size around it), the centre on the apex or 1e-15 .. 1e-12 of the size
+// outside; polygons of 3 .. 60 corners, turned, far from the origin. Truth: the ball's radius
+// less the centre's gap (exact outside a vertex apex: the nearest point is the apex), within the
+// box's half diagonal; and check()'s invariants, which failed: B moved by the depth along the
+// axis touches A.
+TEST(Penetration, BallsCentredOnAPointedHullsApex) {
+    const uint64_t seed = 1128;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Judge j;
+    for (int i = 0; i < 720; ++i) {
+        const Vec3 m = random_unit(rng);
+        const Vec3 e1 = normalized_or(cross(m, random_unit(rng)), {1, 0, 0}), e2 = cross(m, e1);
+        const double c = 3 * std::pow(10.0, u(rng)), radius = c * (1 + 3 * u(rng));
+        const int corners = (i % 3 == 0) ? 3 : (i % 3 == 1 ? 8 : 60);
+        const int apex = (i / 3) % 3;  // 0: a vertex, 1: a box 2.2e-16 wide, 2: a box 1e-13 of the size
+        Verts poly;
+        for (int k = 0; k < corners; ++k) {
+            // Angles spread so that the apex's foot lies inside the polygon (gaps under pi).
+            const double theta = 6.283185307179586 * (k + 0.3 * u(rng)) / corners, rho = radius * (0.5 + 0.5 * u(rng));
+            const Vec3 p = c * m + rho * (std::cos(theta) * e1 + std::sin(theta) * e2);
+            poly.push_back({p.x, p.y, p.z});
+        }
+        const double size = c + radius;
+        ShapePtr shape, polygon, tiny;
+        double slack = 0;  // the truth's uncertainty: the centre's depth in a box apex
+        if (apex == 0) {
+            poly.push_back({0, 0, 0});
+            shape = hull(poly);
+        } else {
+            const double h = apex == 1 ? 0x1p-52 : 1e-13 * size;
+            polygon = hull(poly);
+            tiny = box({h, h, h});
+            shape = ShapePtr(new HullOfTwoShape(*polygon, *tiny));
+            slack = 1.8 * h;
+        }
+        // The centre on the apex or just outside it, away from the polygon.
+        const double gap = (apex == 0 && i % 2) ? size * std::pow(10.0, -15 + 3 * u(rng)) : 0;
+        const Transform xb = pose((i % 4 < 2 ? 0.0 : 10 * size) * random_unit(rng), random_quat(rng));
+        const Vec3 centre = xb.apply(-gap * m);
+        const std::string where = "seed " + std::to_string(seed) + " case " + std::to_string(i) + " corners " +
+                                  std::to_string(corners) + " apex " + std::to_string(apex);
+        const double ball = (i / 9) % 2 ? 0.2 * size * (0.1 + u(rng)) : 0;
+        const double rel = 1e-10 + slack / size;
+        const Transform xa = pose(centre, random_quat(rng));
+        if (ball > 0) {
+            SphereShape s(ball);
+            check(*shape, xb, s, xa, gap - ball, size, rel, "ball " + where, j);
+        } else {
+            PointShape p;
+            check(*shape, xb, p, xa, gap, size, rel, "point " + where, j);
+        }
+    }
+    std::printf(
+        "balls and points on pointed hulls' apexes: %d signed distances, %d overlapping; error over the size "
+        "median %.3g, max %.3g\n",
+        j.cases, j.overlapping, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_GT(j.overlapping, j.cases / 3);
+}
