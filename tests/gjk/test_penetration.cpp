@@ -16,6 +16,7 @@
 
 #include "../support/gjk_test_support.hpp"
 #include "../support/oracle/polytope_oracle.hpp"
+#include "gjk/expander.hpp"
 #include "gjk/gjk.hpp"
 #include "gjk/penetration.hpp"
 #include "shapes/shape.hpp"
@@ -435,6 +436,53 @@ TEST(Penetration, ConcentricConesGoOnInTheLargerArraysWithinTheCallBudget) {
     // The larger arrays are reached (the slanted side gives the depth), and not always (the axis).
     EXPECT_GE(beyond_usual, cases / 4) << "seed " << seed;
     EXPECT_LE(beyond_usual, cases * 3 / 4) << "seed " << seed;
+}
+
+// The expansion that goes on in the larger arrays takes over the smaller one's polytope member by
+// member (Expander's converting constructor): a member left out would go unnoticed by the
+// compiler. The expansion is deterministic, so going on must give, bit for bit, what a fresh
+// expansion in the larger arrays gives after the same first steps: concentric and nearly
+// concentric cones, cylinders and general hulls of them, whose expansions use up the first 128
+// calls.
+TEST(Penetration, GoingOnInTheLargerArraysIsAFreshLargeExpansion) {
+    using namespace epa_detail;
+    const uint64_t seed = 1129;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, went_on = 0, differ = 0;
+    for (int i = 0; i < 60; ++i) {
+        const double r = 0.3 + u(rng), h = 0.3 + u(rng), scale = std::pow(10.0, 4 * u(rng) - 2);
+        const ConeShape cone(r * scale, h * scale);
+        const CylinderShape cylinder(r * scale, h * scale);
+        const HullOfTwoShape general(cone, cylinder);
+        const Shape* shapes[3] = {&cone, &cylinder, &general};
+        const Shape& s = *shapes[i % 3];
+        const Quat q = random_quat(rng);
+        const Transform xa = pose({scale * u(rng), scale * u(rng), 0.0}, q);
+        const Vec3 shift = (i % 2 ? 1e-3 * scale : 0.0) * random_unit(rng);
+        const Transform xb = pose(xa.translation + shift, q);
+        const Vec3 offset = xa.to_local_direction(xb.translation - xa.translation);
+        ++cases;
+        with_pair(classify(s), xa, classify(s), xb, [&](const auto& pair, double) {
+            using P = std::decay_t<decltype(pair)>;
+            Expander<P> small(pair, offset, 128);
+            if (small.run(1e-10).termination != Termination::MaxIterations) return;
+            ++went_on;
+            const CoreDepth on = std::make_unique<Expander<P, kMaxVerticesLarge>>(small, 252)->run(1e-10);
+            const CoreDepth fresh = std::make_unique<Expander<P, kMaxVerticesLarge>>(pair, offset, 252)->run(1e-10);
+            const bool same = on.depth == fresh.depth && on.n == fresh.n && on.point_a == fresh.point_a &&
+                              on.point_b == fresh.point_b && on.iterations == fresh.iterations &&
+                              on.termination == fresh.termination && on.flat == fresh.flat;
+            if (!same && ++differ <= 10)
+                ADD_FAILURE() << "seed " << seed << " case " << i << ": went on to depth " << on.depth << " in "
+                              << on.iterations << " calls, a fresh large expansion to " << fresh.depth << " in "
+                              << fresh.iterations;
+        });
+    }
+    std::printf("expansions going on in the larger arrays: %d of %d, %d differing from a fresh one\n", went_on, cases,
+                differ);
+    EXPECT_EQ(differ, 0);
+    EXPECT_GE(went_on, cases / 4) << "seed " << seed;
 }
 
 // A needle cone (the hull of a unit ball and a point 1e3 .. 1e6 away) and a capsule whose segment
