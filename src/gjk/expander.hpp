@@ -86,8 +86,15 @@ public:
             // own axis: both bound the depth from above, the face's key from below.
             if (face.d >= 0 && h - face.d <= tolerance * h)
                 return finish(face, Termination::RelativeError, tolerance, out);
-            if (face.d >= 0 && upper - face.d <= tolerance * upper) return finish_upper(Termination::RelativeError, out);
-            if (!expand(x, f)) return finish(face, Termination::NoProgress, tolerance, out);
+            if (face.d >= 0 && upper - face.d <= tolerance * upper)
+                return finish_upper(Termination::RelativeError, out);
+            // No progress while C reaches beyond the face along its normal (rounding refused the
+            // new point): the face's depth has no axis (a ball centred on a cone's rim got one
+            // along which the cone reached 1.6e-3 past it); the smallest support value has one.
+            if (!expand(x, f))
+                return h - face.d > std::fmax(floor(), tolerance * h)
+                           ? finish_upper(Termination::NoProgress, out)
+                           : finish(face, Termination::NoProgress, tolerance, out);
             if (n_near_ >= 0 || nf_ >= kNearFrom) keep_near(upper);
         }
     }

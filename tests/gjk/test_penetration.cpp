@@ -886,3 +886,71 @@ TEST(Penetration, BallsCentredOnAPointedHullsApex) {
     EXPECT_EQ(j.failures, 0);
     EXPECT_GT(j.overlapping, j.cases / 3);
 }
+
+// Balls and points centred exactly on a shape's surface, at its support point along a direction:
+// corners, edges and faces of boxes and hulls (directions along the axes, the diagonals, a hair
+// off them, and anywhere), a cone's apex and rim, a cylinder's rims, a capsule's caps, and a
+// general shape (the hull of a cone and a box). The centre's depth is 0 to rounding, so the truth
+// is minus the ball's radius (0 for a point: touching); check() holds the axis to it (B moved by
+// the depth along the axis touches A; the points on the support planes). The code before failed
+// on a ball on a cone's rim and one on the general shape: the expansion stopped on no progress
+// with the last face's normal, along which C reached 1.6e-3 and 1e-5 of the size past the depth.
+// Both orders, turned, near and far from the origin.
+TEST(Penetration, BallsCentredOnCornersEdgesRimsAndApexes) {
+    const uint64_t seed = 1130;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Judge j;
+    const BoxShape box({0.5, 1.5, 0.25});
+    const CylinderShape cylinder(0.7, 1.2);
+    const ConeShape cone(0.9, 0.6);
+    const CapsuleShape capsule(0.4, 0.8);
+    const ShapePtr polytope = hull(random_points(rng, 14, {1.0, 0.6, 0.8}));
+    const HullOfTwoShape general(cone, box);
+    const Shape* shapes[6] = {&box, &cylinder, &cone, &capsule, polytope.get(), &general};
+    const char* names[6] = {"box", "cylinder", "cone", "capsule", "hull", "general"};
+    for (int i = 0; i < 600; ++i) {
+        const int k = i % 6;
+        const Shape& s = *shapes[k];
+        Vec3 d;
+        switch ((i / 6) % 4) {
+            case 0: {  // an axis
+                d = Vec3{};
+                d[int(3 * u(rng)) % 3] = u(rng) < 0.5 ? -1 : 1;
+                break;
+            }
+            case 1:  // a diagonal
+                d = normalized_or(Vec3{u(rng) < 0.5 ? -1.0 : 1.0, u(rng) < 0.5 ? -1.0 : 1.0, u(rng) < 0.5 ? -1.0 : 1.0},
+                                  {1, 0, 0});
+                break;
+            case 2: {  // a hair off an axis
+                Vec3 a{};
+                a[int(3 * u(rng)) % 3] = 1;
+                d = normalized_or(a + std::pow(10.0, -12 + 6 * u(rng)) * random_unit(rng), a);
+                break;
+            }
+            default:
+                d = random_unit(rng);
+        }
+        const double far = i % 3 == 2 ? 1e3 : 1.0;
+        const Transform xb = pose(far * random_unit(rng), random_quat(rng));
+        const Vec3 centre = xb.apply(support(s, d));
+        const Transform xa = pose(centre, random_quat(rng));
+        const std::string where =
+            std::string(names[k]) + " seed " + std::to_string(seed) + " case " + std::to_string(i);
+        const double rel = 1e-9, radius = 0.05 + 0.5 * u(rng);
+        if ((i / 24) % 2) {
+            SphereShape ball(radius);
+            check(s, xb, ball, xa, -radius, 2.0, rel, "ball " + where, j);
+        } else {
+            PointShape point;
+            check(s, xb, point, xa, 0.0, 2.0, rel, "point " + where, j);
+        }
+    }
+    std::printf(
+        "balls and points centred on surfaces: %d signed distances, %d overlapping; error over the size "
+        "median %.3g, max %.3g\n",
+        j.cases, j.overlapping, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0);
+    EXPECT_GT(j.overlapping, j.cases / 3);
+}
