@@ -498,7 +498,6 @@ private:
         plane_[s] = p;
     }
 
-    // The nearest face's nearest point to the origin, as a combination of its corners.
     // The smallest support value seen and its axis: an upper bound of the depth (B moved by it
     // along upper_n_ no longer overlaps), exact along that axis.
     [[gnu::noinline]] CoreDepth finish_upper(Termination t, CoreDepth& out) {
