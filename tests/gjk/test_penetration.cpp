@@ -887,6 +887,44 @@ TEST(Penetration, BallsCentredOnAPointedHullsApex) {
     EXPECT_GT(j.overlapping, j.cases / 3);
 }
 
+namespace {
+
+// A probe direction of kind k: 0 an axis, 1 a diagonal, 2 a hair (1e-12 .. 1e-6) off an axis, else
+// any. Axes and diagonals meet boxes' and hulls' faces, edges and corners, cones' apexes and
+// cylinders' rims head on.
+Vec3 probe_direction(int k, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    auto sign = [&] { return u(rng) < 0.5 ? -1.0 : 1.0; };
+    Vec3 axis{};
+    switch (k) {
+        case 0:
+            axis[int(3 * u(rng)) % 3] = sign();
+            return axis;
+        case 1:
+            return normalized_or(Vec3{sign(), sign(), sign()}, {1, 0, 0});
+        case 2:
+            axis[int(3 * u(rng)) % 3] = 1;
+            return normalized_or(axis + std::pow(10.0, -12 + 6 * u(rng)) * random_unit(rng), axis);
+        default:
+            return random_unit(rng);
+    }
+}
+
+// The shapes the surface tests place: primitives with corners, rims and an apex, a hull and a
+// general shape (the hull of the cone and the box).
+struct SurfaceShapes {
+    BoxShape box{{0.5, 1.5, 0.25}};
+    CylinderShape cylinder{0.7, 1.2};
+    ConeShape cone{0.9, 0.6};
+    CapsuleShape capsule{0.4, 0.8};
+    SphereShape sphere{0.6};
+    ShapePtr polytope;
+    HullOfTwoShape general{cone, box};
+    explicit SurfaceShapes(std::mt19937_64& rng) : polytope(hull(random_points(rng, 14, {1.0, 0.6, 0.8}))) {}
+};
+
+}  // namespace
+
 // Balls and points centred exactly on a shape's surface, at its support point along a direction:
 // corners, edges and faces of boxes and hulls (directions along the axes, the diagonals, a hair
 // off them, and anywhere), a cone's apex and rim, a cylinder's rims, a capsule's caps, and a
@@ -901,43 +939,19 @@ TEST(Penetration, BallsCentredOnCornersEdgesRimsAndApexes) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     Judge j;
-    const BoxShape box({0.5, 1.5, 0.25});
-    const CylinderShape cylinder(0.7, 1.2);
-    const ConeShape cone(0.9, 0.6);
-    const CapsuleShape capsule(0.4, 0.8);
-    const ShapePtr polytope = hull(random_points(rng, 14, {1.0, 0.6, 0.8}));
-    const HullOfTwoShape general(cone, box);
-    const Shape* shapes[6] = {&box, &cylinder, &cone, &capsule, polytope.get(), &general};
+    const SurfaceShapes k(rng);
+    const Shape* shapes[6] = {&k.box, &k.cylinder, &k.cone, &k.capsule, k.polytope.get(), &k.general};
     const char* names[6] = {"box", "cylinder", "cone", "capsule", "hull", "general"};
     for (int i = 0; i < 600; ++i) {
-        const int k = i % 6;
-        const Shape& s = *shapes[k];
-        Vec3 d;
-        switch ((i / 6) % 4) {
-            case 0: {  // an axis
-                d = Vec3{};
-                d[int(3 * u(rng)) % 3] = u(rng) < 0.5 ? -1 : 1;
-                break;
-            }
-            case 1:  // a diagonal
-                d = normalized_or(Vec3{u(rng) < 0.5 ? -1.0 : 1.0, u(rng) < 0.5 ? -1.0 : 1.0, u(rng) < 0.5 ? -1.0 : 1.0},
-                                  {1, 0, 0});
-                break;
-            case 2: {  // a hair off an axis
-                Vec3 a{};
-                a[int(3 * u(rng)) % 3] = 1;
-                d = normalized_or(a + std::pow(10.0, -12 + 6 * u(rng)) * random_unit(rng), a);
-                break;
-            }
-            default:
-                d = random_unit(rng);
-        }
+        const int which = i % 6;
+        const Shape& s = *shapes[which];
+        const Vec3 d = probe_direction((i / 6) % 4, rng);
         const double far = i % 3 == 2 ? 1e3 : 1.0;
         const Transform xb = pose(far * random_unit(rng), random_quat(rng));
         const Vec3 centre = xb.apply(support(s, d));
         const Transform xa = pose(centre, random_quat(rng));
         const std::string where =
-            std::string(names[k]) + " seed " + std::to_string(seed) + " case " + std::to_string(i);
+            std::string(names[which]) + " seed " + std::to_string(seed) + " case " + std::to_string(i);
         const double rel = 1e-9, radius = 0.05 + 0.5 * u(rng);
         if ((i / 24) % 2) {
             SphereShape ball(radius);
@@ -966,38 +980,14 @@ TEST(Penetration, PairsTouchingAtTheirSupportPointsAndJustApartOrIn) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     Judge j;
-    const BoxShape box({0.5, 1.5, 0.25});
-    const CylinderShape cylinder(0.7, 1.2);
-    const ConeShape cone(0.9, 0.6);
-    const CapsuleShape capsule(0.4, 0.8);
-    const SphereShape sphere(0.6);
-    const ShapePtr polytope = hull(random_points(rng, 14, {1.0, 0.6, 0.8}));
-    const HullOfTwoShape general(cone, box);
-    const Shape* shapes[7] = {&box, &cylinder, &cone, &capsule, &sphere, polytope.get(), &general};
+    const SurfaceShapes k(rng);
+    const Shape* shapes[7] = {&k.box, &k.cylinder, &k.cone, &k.capsule, &k.sphere, k.polytope.get(), &k.general};
     const char* names[7] = {"box", "cylinder", "cone", "capsule", "sphere", "hull", "general"};
     const double gaps[9] = {0, 1e-12, -1e-12, 1e-9, -1e-9, 1e-6, -1e-6, 1e-3, -1e-3};
     int too_deep = 0;
     for (int i = 0; i < 1400; ++i) {
         const int ka = int(7 * u(rng)) % 7, kb = int(7 * u(rng)) % 7;
-        Vec3 d;
-        switch (i % 4) {
-            case 0:
-                d = Vec3{};
-                d[int(3 * u(rng)) % 3] = u(rng) < 0.5 ? -1 : 1;
-                break;
-            case 1:
-                d = normalized_or(Vec3{u(rng) < 0.5 ? -1.0 : 1.0, u(rng) < 0.5 ? -1.0 : 1.0, u(rng) < 0.5 ? -1.0 : 1.0},
-                                  {1, 0, 0});
-                break;
-            case 2: {
-                Vec3 a{};
-                a[int(3 * u(rng)) % 3] = 1;
-                d = normalized_or(a + std::pow(10.0, -12 + 6 * u(rng)) * random_unit(rng), a);
-                break;
-            }
-            default:
-                d = random_unit(rng);
-        }
+        const Vec3 d = probe_direction(i % 4, rng);
         // Shared orientations half the time (faces parallel along the axes), else any.
         const Quat qa = random_quat(rng), qb = (i / 4) % 2 ? qa : random_quat(rng);
         const double g = gaps[(i / 8) % 9];
