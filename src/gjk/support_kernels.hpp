@@ -53,15 +53,24 @@ struct SmallHullSupport {
         return v[max1 > max0 ? best1 : best0];
     }
 };
+// A cylinder or a cone: no switch on the kind per call (the flag is the same on every call, so
+// its branch predicts). Curved: its points are rounded, as GenericSupport's may be.
+struct RevolutionSupport {
+    double radius, half_height;
+    bool cone;
+    [[gnu::always_inline]] Vec3 operator()(Vec3 d) const {
+        return cone ? cone_support(radius, half_height, d) : cylinder_support(radius, half_height, d);
+    }
+};
 struct GenericSupport {
     const Shape* s;
     Vec3 operator()(Vec3 d) const { return support(*s, d); }
 };
 
-// Supports whose points are exact (points, segments, boxes, small hulls); curved and general
-// shapes go through GenericSupport.
+// Supports whose points are exact (points, segments, boxes, small hulls); cylinders and cones go
+// through RevolutionSupport, other curved and general shapes through GenericSupport.
 template <class S>
-constexpr bool exact_support = !std::is_same_v<S, GenericSupport>;
+constexpr bool exact_support = !std::is_same_v<S, GenericSupport> && !std::is_same_v<S, RevolutionSupport>;
 
 // B's local frame in A's: x -> r x + t, with r = Ra^T Rb and t = Ra^T (tb - ta). The translation
 // difference is taken before rotating, so shapes far from the world origin keep their relative
@@ -152,7 +161,7 @@ inline void adopt_scale(Support& sup, double sc, Vec3& a, Vec3& b, double& margi
     margin *= sc;
 }
 
-enum class Core { Point, Segment, Box, SmallHull, Generic };
+enum class Core { Point, Segment, Box, SmallHull, Revolution, Generic };
 
 // A shape as a core plus a radius: `shape` is the core's shape (the shape itself, or the operand
 // of a Minkowski sum with a sphere), `core` how to take its support.
@@ -201,6 +210,9 @@ inline CoreOf classify(const Shape& s) {
                 return {Core::SmallHull, 0, &s};
             return {Core::Generic, 0, &s};
         }
+        case ShapeKind::Cylinder:
+        case ShapeKind::Cone:
+            return {Core::Revolution, 0, &s};
         case ShapeKind::MinkowskiSum:
             return classify_sum(static_cast<const MinkowskiSumShape&>(s));
         default:
@@ -227,6 +239,14 @@ auto with_support(const CoreOf& c, Fn&& fn) {
         case Core::SmallHull: {
             const auto& h = static_cast<const ConvexHullShape&>(s);
             return fn(SmallHullSupport{h.vertices.data(), h.vertices.size()});
+        }
+        case Core::Revolution: {
+            if (s.kind() == ShapeKind::Cone) {
+                const auto& c = static_cast<const ConeShape&>(s);
+                return fn(RevolutionSupport{c.radius, c.half_height, true});
+            }
+            const auto& c = static_cast<const CylinderShape&>(s);
+            return fn(RevolutionSupport{c.radius, c.half_height, false});
         }
         case Core::Generic:
             break;

@@ -137,6 +137,22 @@ struct DiskShape final : Shape {
 // Sign used by supports: +1 for zero, so a zero direction still yields a point of the shape.
 inline double support_sign(double v) { return v < 0 ? -1.0 : 1.0; }
 
+// Supports of the two solids of revolution about z (local frame, any finite d): a cylinder of
+// radius r over z in [-h, h], and a cone with its apex at (0, 0, h) and its base disk of radius r
+// at z = -h. support() and the GJK kernels (RevolutionSupport) share them.
+inline Vec3 cylinder_support(double r, double h, Vec3 d) {
+    const Planar radial = radial_unit(d.x, d.y);
+    return {r * radial.x, r * radial.y, support_sign(d.z) * h};
+}
+inline Vec3 cone_support(double r, double h, Vec3 d) {
+    const Planar radial = radial_unit(d.x, d.y);
+    // Apex when d.z*h >= d.(base rim point) = r*|d_xy| - d.z*h.
+    const double apex_score = d.z * h;
+    const double rim_score = r * (d.x * radial.x + d.y * radial.y) - d.z * h;
+    if (apex_score >= rim_score) return {0, 0, h};
+    return {r * radial.x, r * radial.y, -h};
+}
+
 // A point of `s` (local frame) maximising d . x. Any finite d, zero included.
 inline Vec3 support(const Shape& s, Vec3 d) {
     switch (s.kind()) {
@@ -156,17 +172,11 @@ inline Vec3 support(const Shape& s, Vec3 d) {
         }
         case ShapeKind::Cylinder: {
             const auto& c = static_cast<const CylinderShape&>(s);
-            const Planar radial = radial_unit(d.x, d.y);
-            return {c.radius * radial.x, c.radius * radial.y, support_sign(d.z) * c.half_height};
+            return cylinder_support(c.radius, c.half_height, d);
         }
         case ShapeKind::Cone: {
             const auto& c = static_cast<const ConeShape&>(s);
-            const Planar radial = radial_unit(d.x, d.y);
-            // Apex when d.z*h >= d.(base rim point) = r*|d_xy| - d.z*h.
-            const double apex_score = d.z * c.half_height;
-            const double rim_score = c.radius * (d.x * radial.x + d.y * radial.y) - d.z * c.half_height;
-            if (apex_score >= rim_score) return {0, 0, c.half_height};
-            return {c.radius * radial.x, c.radius * radial.y, -c.half_height};
+            return cone_support(c.radius, c.half_height, d);
         }
         case ShapeKind::ConvexHull:
             return static_cast<const ConvexHullShape&>(s).support(d);
