@@ -998,12 +998,10 @@ TEST(Penetration, PairsTouchingAtTheirSupportPointsAndJustApartOrIn) {
         xb = pose(pa + g * d - xb.rotation * pb_local, qb);
         const std::string where = std::string(names[ka]) + "/" + names[kb] + " seed " + std::to_string(seed) +
                                   " case " + std::to_string(i) + " gap " + std::to_string(g);
-        // Measured limit (docs/c-api.md): touching a cylinder (its flat face or its rim against
-        // anything), GJK may stop on no progress up to 1e-8 of the size short of contact (too
-        // far, never too near), and the axis of such a touch is as good; 10 of 56,000 cases of
-        // this test's kind (seed 1131, 28,000 placements) were beyond 1e-9, the worst 9.8e-9.
+        // Measured limit (docs/c-api.md; CylinderTouchesStayWithinTheDocumentedLimit): touching a
+        // cylinder, GJK may stop on no progress up to 5e-8 of the size short of contact.
         const bool cylinder_touch = g == 0 && (ka == 1 || kb == 1);
-        check(*shapes[ka], xa, *shapes[kb], xb, g >= 0 ? g : NAN, 2.0, cylinder_touch ? 1e-8 : 1e-9, where, j);
+        check(*shapes[ka], xa, *shapes[kb], xb, g >= 0 ? g : NAN, 2.0, cylinder_touch ? 5e-8 : 1e-9, where, j);
         const DistanceResult r = signed_distance(*shapes[ka], xa, *shapes[kb], xb, 1e-12, 256);
         if (g < 0 && r.distance < g - 1e-9 * 2.0 && ++too_deep <= 10)
             ADD_FAILURE() << "deeper than d allows: " << r.distance << " for " << where;
@@ -1015,4 +1013,56 @@ TEST(Penetration, PairsTouchingAtTheirSupportPointsAndJustApartOrIn) {
     EXPECT_EQ(j.failures, 0);
     EXPECT_EQ(too_deep, 0);
     EXPECT_GT(j.overlapping, j.cases / 5);
+}
+
+// The documented limit at a touch with a cylinder (docs/c-api.md, the header's kairos_distance):
+// a cylinder placed touching another shape at their support points along a probe direction
+// (its flat faces and rims against faces, edges, corners, rims and apexes; turned, shared
+// orientations half the time, near and 1e3 from the origin; both orders). The truth is 0. GJK may
+// stop on no progress short of contact (its support points wander around the rim while the
+// origin sits on a flat face's curved edge of A - B): never beyond 5e-8 of the size, rarely beyond
+// 1e-9, and never against a sphere, a capsule or another cylinder (no flat face meets the rim
+// there). Measured on 300,000 placements of this construction (other seeds): 0.17 % beyond 1e-9,
+// the worst 4.35e-8; this seed's 20,000: 0.35 %, the worst 1.2e-8.
+TEST(Penetration, CylinderTouchesStayWithinTheDocumentedLimit) {
+    const uint64_t seed = 1132;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    const SurfaceShapes k(rng);
+    const Shape* shapes[7] = {&k.box, &k.cylinder, &k.cone, &k.capsule, &k.sphere, k.polytope.get(), &k.general};
+    const char* names[7] = {"box", "cylinder", "cone", "capsule", "sphere", "hull", "general"};
+    const double size = 2.0;
+    const int n = 20000;
+    int beyond = 0, failures = 0;
+    std::vector<double> errors;
+    for (int i = 0; i < n; ++i) {
+        const int other = int(7 * u(rng)) % 7;
+        const bool cylinder_first = u(rng) < 0.5;
+        const int ka = cylinder_first ? 1 : other, kb = cylinder_first ? other : 1;
+        const Vec3 d = probe_direction(i % 4, rng);
+        const Quat qa = random_quat(rng), qb = (i / 4) % 2 ? qa : random_quat(rng);
+        const Transform xa = pose((i % 3 == 2 ? 1e3 : 1.0) * random_unit(rng), qa);
+        const Vec3 pa = xa.apply(support(*shapes[ka], xa.to_local_direction(d)));
+        Transform xb = pose({}, qb);
+        const Vec3 pb_local = support(*shapes[kb], xb.to_local_direction(-d));
+        xb = pose(pa - xb.rotation * pb_local, qb);
+        const DistanceResult r = signed_distance(*shapes[ka], xa, *shapes[kb], xb, 1e-12, 256);
+        const double e = std::fabs(r.distance) / size;
+        errors.push_back(e);
+        beyond += e > 1e-9;
+        const bool round_other = other == 1 || other == 3 || other == 4;
+        if ((e > 5e-8 || (round_other && e > 1e-9) || !std::isfinite(r.distance)) && ++failures <= 10)
+            ADD_FAILURE() << names[ka] << "/" << names[kb] << " seed " << seed << " case " << i << ": signed distance "
+                          << r.distance << " for a touch";
+    }
+    std::sort(errors.begin(), errors.end());
+    std::printf(
+        "cylinder touches: %d signed distances, %d beyond 1e-9 of the size; error over the size median %.3g, "
+        "99.9th percentile %.3g, max %.3g\n",
+        n, beyond, errors[n / 2], errors[n - n / 1000], errors.back());
+    EXPECT_EQ(failures, 0);
+    // The limit is rare: under 1 % of touches go beyond 1e-9, and some do (the construction
+    // reaches the case the limit describes).
+    EXPECT_LT(beyond, n / 100);
+    EXPECT_GT(beyond, 0);
 }
