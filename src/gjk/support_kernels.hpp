@@ -10,6 +10,10 @@
 #include <cstddef>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "math/math.hpp"
 #include "shapes/shape.hpp"
 
@@ -31,6 +35,9 @@ struct BoxSupport {
 // Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
 // branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
 // the dot product. Ties go to the lower index within each half-stream, then to the even one.
+// With SSE2 (every x86-64) the two streams are the two lanes of one register: odd index in lane
+// 0, even in lane 1, the same products and sums in the same order, so the same vertex wins as in
+// the scalar form (kept for other targets).
 struct SmallHullSupport {
     const Vec3* v;
     size_t n;
@@ -38,6 +45,29 @@ struct SmallHullSupport {
         size_t best0 = 0, best1 = 0;
         double max0 = dot(d, v[0]), max1 = -INFINITY;
         size_t i = 1;
+#if defined(__SSE2__)
+        static_assert(sizeof(Vec3) == 3 * sizeof(double), "vertices are read as packed doubles");
+        const __m128d dx = _mm_set1_pd(d.x), dy = _mm_set1_pd(d.y), dz = _mm_set1_pd(d.z);
+        __m128d top = _mm_set_pd(max0, max1);  // lane 0 odd stream, lane 1 even
+        __m128i best = _mm_setzero_si128();
+        __m128i index = _mm_set_epi64x(2, 1);
+        const __m128i step = _mm_set_epi64x(2, 2);
+        for (; i + 1 < n; i += 2) {
+            // v[i] and v[i + 1]: six doubles in a row, read as three pairs and regrouped by axis.
+            const double* p = &v[i].x;
+            const __m128d l0 = _mm_loadu_pd(p), l1 = _mm_loadu_pd(p + 2), l2 = _mm_loadu_pd(p + 4);
+            const __m128d x = _mm_shuffle_pd(l0, l1, 2), y = _mm_shuffle_pd(l0, l2, 1), z = _mm_shuffle_pd(l1, l2, 2);
+            const __m128d score = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, x), _mm_mul_pd(dy, y)), _mm_mul_pd(dz, z));
+            const __m128i higher = _mm_castpd_si128(_mm_cmpgt_pd(score, top));
+            best = _mm_or_si128(_mm_and_si128(higher, index), _mm_andnot_si128(higher, best));
+            top = _mm_max_pd(score, top);  // score > top ? score : top, as the scalar select
+            index = _mm_add_epi64(index, step);
+        }
+        max1 = _mm_cvtsd_f64(top);
+        max0 = _mm_cvtsd_f64(_mm_unpackhi_pd(top, top));
+        best1 = static_cast<size_t>(_mm_cvtsi128_si64(best));
+        best0 = static_cast<size_t>(_mm_cvtsi128_si64(_mm_unpackhi_epi64(best, best)));
+#else
         for (; i + 1 < n; i += 2) {
             const double s1 = dot(d, v[i]), s0 = dot(d, v[i + 1]);
             best1 = s1 > max1 ? i : best1;
@@ -45,6 +75,7 @@ struct SmallHullSupport {
             best0 = s0 > max0 ? i + 1 : best0;
             max0 = s0 > max0 ? s0 : max0;
         }
+#endif
         if (i < n) {
             const double s1 = dot(d, v[i]);
             best1 = s1 > max1 ? i : best1;

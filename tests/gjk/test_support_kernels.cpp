@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// The support kernels GJK and the casts inline (src/gjk/support_kernels.hpp) against brute force:
+// the small hull's vectorised scan picks the vertex its tie rule names, and the cylinder's and
+// cone's kernel gives support()'s point, a maximiser over their rims and apex.
+#include <gtest/gtest.h>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+#include "gjk/support_kernels.hpp"
+#include "gjk_test_support.hpp"
+
+using namespace kairos;
+using kernels::RevolutionSupport;
+using kernels::SmallHullSupport;
+
+namespace {
+
+// The documented rule, by brute force: the largest d.v; among the vertices reaching it, the lowest
+// even index if any is even, else the lowest odd one.
+size_t expected_vertex(const std::vector<Vec3>& v, Vec3 d) {
+    double top = -INFINITY;
+    for (const Vec3& p : v) top = std::fmax(top, dot(d, p));
+    for (int parity = 0; parity < 2; ++parity)
+        for (size_t i = parity; i < v.size(); i += 2)
+            if (dot(d, v[i]) == top) return i;
+    return 0;
+}
+
+}  // namespace
+
+// Vertex arrays of 1 to 32 points on a small integer grid (many ties: equal scores on distinct
+// points, duplicates), with directions along axes, diagonals, grid vectors, zero and random. The
+// kernel must return the vertex the rule names, which the scalar and the SSE2 forms share.
+TEST(SupportKernels, SmallHullPicksTheVertexItsTieRuleNames) {
+    const uint64_t seed = 2101;
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> grid(-2, 2);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int cases = 0, wrong = 0, tied = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const size_t n = 1 + trial % 32;
+        std::vector<Vec3> v(n);
+        for (Vec3& p : v)
+            p = trial % 3 == 2 ? Vec3{u(rng), u(rng), u(rng)}
+                               : Vec3{double(grid(rng)), double(grid(rng)), 0.5 * grid(rng)};
+        for (int k = 0; k < 8; ++k) {
+            Vec3 d;
+            switch (k % 4) {
+                case 0:
+                    d = Vec3{};
+                    d[int(3 * (u(rng) + 1) / 2) % 3] = u(rng) < 0 ? -1.0 : 1.0;
+                    break;
+                case 1:
+                    d = {double(grid(rng)), double(grid(rng)), double(grid(rng))};
+                    break;
+                case 2:
+                    d = k == 2 ? Vec3{} : Vec3{1, 1, 1};
+                    break;
+                default:
+                    d = {u(rng), u(rng), u(rng)};
+            }
+            const SmallHullSupport support{v.data(), v.size()};
+            const Vec3 got = support(d);
+            const size_t want = expected_vertex(v, d);
+            int reaching = 0;
+            for (size_t i = 0; i < n; ++i) reaching += dot(d, v[i]) == dot(d, v[want]) && !(v[i] == v[want]);
+            tied += reaching > 0;
+            ++cases;
+            if (!(got == v[want]) && ++wrong <= 10)
+                ADD_FAILURE() << "seed " << seed << " trial " << trial << " n " << n << " direction " << d.x << " "
+                              << d.y << " " << d.z << ": vertex " << want << " expected";
+        }
+    }
+    std::printf("small hull support: %d scans, %d with distinct vertices tied at the top\n", cases, tied);
+    EXPECT_EQ(wrong, 0);
+    // The tie rule is what is tested: a good share of scans must have distinct tied vertices.
+    EXPECT_GT(tied, cases / 4);
+    EXPECT_LT(tied, cases);
+}
+
+// The cylinder's and cone's kernel is support() of the shape, bit for bit, and a maximiser: no
+// point of the rims or the apex (sampled every 0.1 degree) reaches farther along d beyond
+// rounding. Directions: axes, a hair (1e-300 .. 1e-3) off the axis, zero, random.
+TEST(SupportKernels, CylinderAndConeKernelIsTheShapesSupport) {
+    const uint64_t seed = 2102;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const CylinderShape cylinder(0.7, 1.3);
+    const ConeShape cone(0.9, 0.6);
+    const RevolutionSupport kernel[2] = {{0.7, 1.3, false}, {0.9, 0.6, true}};
+    const Shape* shapes[2] = {&cylinder, &cone};
+    int cases = 0, different = 0, beaten = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        Vec3 d{u(rng), u(rng), u(rng)};
+        if (trial % 4 == 1) d = {std::pow(10.0, -300 + 297 * (u(rng) + 1) / 2), 0, u(rng) < 0 ? -1.0 : 1.0};
+        if (trial % 4 == 2) d = trial % 8 == 2 ? Vec3{} : Vec3{0, 0, u(rng) < 0 ? -1.0 : 1.0};
+        for (int s = 0; s < 2; ++s) {
+            const Vec3 got = kernel[s](d), want = support(*shapes[s], d);
+            ++cases;
+            if (!(got == want) && ++different <= 10)
+                ADD_FAILURE() << "seed " << seed << " trial " << trial << " shape " << s << ": kernel differs";
+            const double r = s == 0 ? 0.7 : 0.9, h = s == 0 ? 1.3 : 0.6, reach = dot(d, got);
+            double best = s == 1 ? dot(d, Vec3{0, 0, h}) : -INFINITY;
+            for (int k = 0; k < 3600; ++k) {
+                const double a = k * (M_PI / 1800);
+                best = std::fmax(best, dot(d, Vec3{r * std::cos(a), r * std::sin(a), -h}));
+                if (s == 0) best = std::fmax(best, dot(d, Vec3{r * std::cos(a), r * std::sin(a), h}));
+            }
+            if (best > reach + 1e-15 * (r + h) * std::sqrt(dot(d, d)) && ++beaten <= 10)
+                ADD_FAILURE() << "seed " << seed << " trial " << trial << " shape " << s << ": a rim point reaches "
+                              << best - reach << " farther";
+        }
+    }
+    EXPECT_EQ(different, 0);
+    EXPECT_EQ(beaten, 0);
+    EXPECT_EQ(cases, 4000);
+}
