@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <type_traits>
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) && defined(__x86_64__)
 #include <emmintrin.h>
 #endif
 
@@ -35,9 +35,9 @@ struct BoxSupport {
 // Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
 // branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
 // the dot product. Ties go to the lower index within each half-stream, then to the even one.
-// With SSE2 (every x86-64) the two streams are the two lanes of one register: odd index in lane
-// 0, even in lane 1, the same products and sums in the same order, so the same vertex wins as in
-// the scalar form (kept for other targets).
+// On x86-64 (SSE2 is part of it) the two streams are the two lanes of one register: odd index in
+// lane 0, even in lane 1, the same products and sums in the same order, so the same vertex wins as
+// in the scalar form (kept for other targets).
 struct SmallHullSupport {
     const Vec3* v;
     size_t n;
@@ -45,7 +45,7 @@ struct SmallHullSupport {
         size_t best0 = 0, best1 = 0;
         double max0 = dot(d, v[0]), max1 = -INFINITY;
         size_t i = 1;
-#if defined(__SSE2__)
+#if defined(__SSE2__) && defined(__x86_64__)
         static_assert(sizeof(Vec3) == 3 * sizeof(double), "vertices are read as packed doubles");
         const __m128d dx = _mm_set1_pd(d.x), dy = _mm_set1_pd(d.y), dz = _mm_set1_pd(d.z);
         __m128d top = _mm_set_pd(max0, max1);  // lane 0 odd stream, lane 1 even
