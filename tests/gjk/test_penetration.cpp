@@ -969,6 +969,20 @@ TEST(Penetration, BallsCentredOnCornersEdgesRimsAndApexes) {
     EXPECT_GT(j.overlapping, j.cases / 3);
 }
 
+namespace {
+
+// B placed touching A at their support points along the world direction d, then moved by g along
+// d (apart for g > 0): A at xa, B turned by qb. The plane across d through A's support point
+// separates them by g, so their distance is g exactly for g >= 0, and |g| bounds the depth below.
+Transform touching_pair(const Shape& a, const Transform& xa, const Shape& b, Quat qb, Vec3 d, double g) {
+    const Vec3 pa = xa.apply(support(a, xa.to_local_direction(d)));
+    const Transform turned = pose({}, qb);
+    const Vec3 pb_local = support(b, turned.to_local_direction(-d));
+    return pose(pa + g * d - turned.rotation * pb_local, qb);
+}
+
+}  // namespace
+
 // Pairs placed touching at their support points along a direction d, then moved apart or together
 // by g along d (|g| 0, 1e-12 .. 1e-3 of the size): boxes face to face, edge to edge and corner to
 // face (d along the axes, the diagonals and a hair off them), cones apex to apex, cylinders rim to
@@ -992,10 +1006,7 @@ TEST(Penetration, PairsTouchingAtTheirSupportPointsAndJustApartOrIn) {
         const Quat qa = random_quat(rng), qb = (i / 4) % 2 ? qa : random_quat(rng);
         const double g = gaps[(i / 8) % 9];
         const Transform xa = pose((i % 3 == 2 ? 1e3 : 1.0) * random_unit(rng), qa);
-        const Vec3 pa = xa.apply(support(*shapes[ka], xa.to_local_direction(d)));
-        Transform xb = pose({}, qb);
-        const Vec3 pb_local = support(*shapes[kb], xb.to_local_direction(-d));
-        xb = pose(pa + g * d - xb.rotation * pb_local, qb);
+        const Transform xb = touching_pair(*shapes[ka], xa, *shapes[kb], qb, d, g);
         const std::string where = std::string(names[ka]) + "/" + names[kb] + " seed " + std::to_string(seed) +
                                   " case " + std::to_string(i) + " gap " + std::to_string(g);
         // Measured limit (docs/c-api.md; CylinderTouchesStayWithinTheDocumentedLimit): touching a
@@ -1042,10 +1053,7 @@ TEST(Penetration, CylinderTouchesStayWithinTheDocumentedLimit) {
         const Vec3 d = probe_direction(i % 4, rng);
         const Quat qa = random_quat(rng), qb = (i / 4) % 2 ? qa : random_quat(rng);
         const Transform xa = pose((i % 3 == 2 ? 1e3 : 1.0) * random_unit(rng), qa);
-        const Vec3 pa = xa.apply(support(*shapes[ka], xa.to_local_direction(d)));
-        Transform xb = pose({}, qb);
-        const Vec3 pb_local = support(*shapes[kb], xb.to_local_direction(-d));
-        xb = pose(pa - xb.rotation * pb_local, qb);
+        const Transform xb = touching_pair(*shapes[ka], xa, *shapes[kb], qb, d, 0.0);
         const DistanceResult r = signed_distance(*shapes[ka], xa, *shapes[kb], xb, 1e-12, 256);
         const double e = std::fabs(r.distance) / size;
         errors.push_back(e);
