@@ -101,8 +101,7 @@ TEST(SupportKernels, CylinderAndConeKernelIsTheShapesSupport) {
                 ADD_FAILURE() << "seed " << seed << " trial " << trial << " shape " << s << ": kernel differs";
             const double r = s == 0 ? 0.7 : 0.9, h = s == 0 ? 1.3 : 0.6, reach = dot(d, got);
             // The point is the shape's: on a rim (a cap's plane, within the radius) or the apex.
-            const bool on_cap = (got.z == -h || (s == 0 && got.z == h)) &&
-                                std::hypot(got.x, got.y) <= r * (1 + 1e-15);
+            const bool on_cap = (got.z == -h || (s == 0 && got.z == h)) && std::hypot(got.x, got.y) <= r * (1 + 1e-15);
             if (!(on_cap || (s == 1 && got == Vec3{0, 0, h})) && ++outside <= 10)
                 ADD_FAILURE() << "seed " << seed << " trial " << trial << " shape " << s << ": point " << got.x << " "
                               << got.y << " " << got.z << " is not on the shape";
