@@ -126,7 +126,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
                 // decides, and each refinement in angle needs a vertex on both; so can a round C
                 // (near-concentric curved shapes), whose depth the polytope approaches only as
                 // its vertices multiply. Such a pair goes on with room for 252 vertices, on the
-                // heap (about 100 kB: too much for a stack), from the polytope it has: it once
+                // heap (about 110 kB: too much for a stack), from the polytope it has: it once
                 // started again from nothing, and near-concentric generic shapes spent a third of
                 // their time repeating the first 128 steps (a world step seconds long under the
                 // sanitizers, found by fuzzing). A caller's max_iterations bounds the calls in all.

@@ -18,6 +18,7 @@ inline constexpr double kEps = 2.220446049250313e-16;
 inline constexpr int kMaxVertices = 4 + 128;
 inline constexpr int kMaxVerticesLarge = 256;
 inline constexpr int kNearFrom = 24;  // faces from which the expansion keeps its near faces apart
+inline constexpr int kRankFrom = 128;  // faces from which it finds them in a heap, not a list
 
 struct Vertex {
     Vec3 w, a, b;  // w = a - b: C's point, A's and B's support points (A's frame, working scale)

@@ -438,6 +438,28 @@ TEST(Penetration, ConcentricConesGoOnInTheLargerArraysWithinTheCallBudget) {
     EXPECT_LE(beyond_usual, cases * 3 / 4) << "seed " << seed;
 }
 
+namespace {
+
+// A cone, a cylinder of the same radius and half height, and the general hull of the two.
+struct CurvedKinds {
+    CurvedKinds(double r, double h) : cone(r, h), cylinder(r, h), general(cone, cylinder) {}
+    const Shape& operator[](int i) const {
+        const Shape* all[3] = {&cone, &cylinder, &general};
+        return *all[i];
+    }
+    ConeShape cone;
+    CylinderShape cylinder;
+    HullOfTwoShape general;
+};
+
+// Two expansions' answers are the same, bit for bit.
+bool same_depth(const epa_detail::CoreDepth& x, const epa_detail::CoreDepth& y) {
+    return x.depth == y.depth && x.n == y.n && x.point_a == y.point_a && x.point_b == y.point_b &&
+           x.iterations == y.iterations && x.termination == y.termination && x.flat == y.flat;
+}
+
+}  // namespace
+
 // The expansion that goes on in the larger arrays takes over the smaller one's polytope member by
 // member (Expander's converting constructor): a member left out would go unnoticed by the
 // compiler. The expansion is deterministic, so going on must give, bit for bit, what a fresh
@@ -452,11 +474,8 @@ TEST(Penetration, GoingOnInTheLargerArraysIsAFreshLargeExpansion) {
     int cases = 0, went_on = 0, differ = 0;
     for (int i = 0; i < 60; ++i) {
         const double r = 0.3 + u(rng), h = 0.3 + u(rng), scale = std::pow(10.0, 4 * u(rng) - 2);
-        const ConeShape cone(r * scale, h * scale);
-        const CylinderShape cylinder(r * scale, h * scale);
-        const HullOfTwoShape general(cone, cylinder);
-        const Shape* shapes[3] = {&cone, &cylinder, &general};
-        const Shape& s = *shapes[i % 3];
+        const CurvedKinds kinds(r * scale, h * scale);
+        const Shape& s = kinds[i % 3];
         const Quat q = random_quat(rng);
         const Transform xa = pose({scale * u(rng), scale * u(rng), 0.0}, q);
         const Vec3 shift = (i % 2 ? 1e-3 * scale : 0.0) * random_unit(rng);
@@ -470,10 +489,7 @@ TEST(Penetration, GoingOnInTheLargerArraysIsAFreshLargeExpansion) {
             ++went_on;
             const CoreDepth on = std::make_unique<Expander<P, kMaxVerticesLarge>>(small, 252)->run(1e-10);
             const CoreDepth fresh = std::make_unique<Expander<P, kMaxVerticesLarge>>(pair, offset, 252)->run(1e-10);
-            const bool same = on.depth == fresh.depth && on.n == fresh.n && on.point_a == fresh.point_a &&
-                              on.point_b == fresh.point_b && on.iterations == fresh.iterations &&
-                              on.termination == fresh.termination && on.flat == fresh.flat;
-            if (!same && ++differ <= 10)
+            if (!same_depth(on, fresh) && ++differ <= 10)
                 ADD_FAILURE() << "seed " << seed << " case " << i << ": went on to depth " << on.depth << " in "
                               << on.iterations << " calls, a fresh large expansion to " << fresh.depth << " in "
                               << fresh.iterations;
@@ -483,6 +499,47 @@ TEST(Penetration, GoingOnInTheLargerArraysIsAFreshLargeExpansion) {
                 differ);
     EXPECT_EQ(differ, 0);
     EXPECT_GE(went_on, cases / 4) << "seed " << seed;
+}
+
+// A large polytope's near faces are found in a heap (Expander's ranking), which must pick the
+// face the scan over the list of near faces picks, ties included (by key, then by the order the
+// faces entered the list): the same expansion, bit for bit, as one that never ranks. Also from 24
+// faces, so that most steps and the heap's rebuilds are exercised. Concentric and nearly
+// concentric cones, cylinders, general hulls of them, and deep random overlaps of each with each.
+TEST(Penetration, RankedNearFacesAreTheListsChoice) {
+    using namespace epa_detail;
+    const uint64_t seed = 1133;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, ranked = 0, differ = 0;
+    for (int i = 0; i < 90; ++i) {
+        const double r = 0.3 + u(rng), h = 0.3 + u(rng), scale = std::pow(10.0, 4 * u(rng) - 2);
+        const CurvedKinds kinds(r * scale, h * scale);
+        const Shape &sa = kinds[i % 3], &sb = kinds[(i / 3) % 3];
+        const Quat qa = random_quat(rng), qb = i % 5 < 3 ? qa : random_quat(rng);
+        const Transform xa = pose({scale * u(rng), scale * u(rng), 0.0}, qa);
+        const double shift = i % 5 == 0 ? 0.0 : (i % 5 == 1 ? 1e-3 : 0.3);
+        const Transform xb = pose(xa.translation + shift * scale * random_unit(rng), qb);
+        const Vec3 offset = xa.to_local_direction(xb.translation - xa.translation);
+        ++cases;
+        with_pair(classify(sa), xa, classify(sb), xb, [&](const auto& pair, double) {
+            using P = std::decay_t<decltype(pair)>;
+            auto ranking = std::make_unique<Expander<P, kMaxVerticesLarge>>(pair, offset, 252);
+            auto early = std::make_unique<Expander<P, kMaxVerticesLarge, 24>>(pair, offset, 252);
+            auto list = std::make_unique<Expander<P, kMaxVerticesLarge, (1 << 30)>>(pair, offset, 252);
+            const CoreDepth a = ranking->run(1e-10), b = early->run(1e-10), c = list->run(1e-10);
+            ranked += ranking->ranked();
+            if ((!same_depth(a, c) || !same_depth(b, c)) && ++differ <= 10)
+                ADD_FAILURE() << "seed " << seed << " case " << i << ": depth " << a.depth << " (" << a.iterations
+                              << " calls) ranked from " << kRankFrom << " faces, " << b.depth << " (" << b.iterations
+                              << ") from 24, " << c.depth << " (" << c.iterations << ") never";
+        });
+    }
+    std::printf("expansions ranking their near faces: %d of %d, %d differing from the list's\n", ranked, cases, differ);
+    EXPECT_EQ(differ, 0);
+    // Both kinds: the ranking is reached on large polytopes and not on small ones.
+    EXPECT_GE(ranked, cases / 4) << "seed " << seed;
+    EXPECT_LT(ranked, cases) << "seed " << seed;
 }
 
 // A needle cone (the hull of a unit ball and a point 1e3 .. 1e6 away) and a capsule whose segment
