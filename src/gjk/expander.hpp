@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "gjk/gjk.hpp"
+#include "gjk/near_ranking.hpp"
 #include "gjk/polytope.hpp"
 #include "gjk/support_kernels.hpp"
 #include "gjk/termination.hpp"
@@ -27,7 +28,6 @@ template <class Pair, int MaxV = kMaxVertices, int RankFrom = (MaxV > kMaxVertic
 class Expander {
     static constexpr int kMaxV = MaxV, kMaxF = 2 * MaxV;
     static constexpr bool kRanks = RankFrom <= kMaxF;
-    static constexpr int kRankF = kRanks ? kMaxF : 1;  // the ranking's arrays' size
     static_assert(kMaxV <= 256 && kMaxF <= 32767);  // uint8_t vertex and int16_t face indices
 
 public:
@@ -39,47 +39,24 @@ public:
     // polytope, scale and bounds are taken over, so none of its calls is made again.
     template <int M, int R>
     Expander(const Expander<Pair, M, R>& from, uint32_t budget)
-        : pair_(from.pair_),
-          hint_(from.hint_),
-          budget_(budget),
-          seed_(from.seed_),
-          calls_(from.calls_),
-          size_(from.size_),
-          flat_(from.flat_),
-          interior_(from.interior_),
-          upper_n_(from.upper_n_),
-          upper_x_(from.upper_x_),
-          upper_(from.upper_),
-          epoch_(from.epoch_),
-          listing_(from.listing_),
-          n_near_(from.n_near_),
-          n_written_(from.n_written_),
-          near_upper_(from.near_upper_),
-          step_(from.step_),
-          next_seq_(from.next_seq_),
-          ranked_(from.ranked_),
-          near_empty_(from.near_empty_),
-          n_free_(from.n_free_),
-          nv_(from.nv_),
-          nf_(from.nf_) {
+        : pair_(from.pair_), hint_(from.hint_), budget_(budget), seed_(from.seed_), calls_(from.calls_),
+          size_(from.size_), flat_(from.flat_), interior_(from.interior_), upper_n_(from.upper_n_),
+          upper_x_(from.upper_x_), upper_(from.upper_), epoch_(from.epoch_), listing_(from.listing_),
+          n_near_(from.n_near_), n_written_(from.n_written_), n_free_(from.n_free_), nv_(from.nv_), nf_(from.nf_) {
         static_assert(M <= MaxV && (kRanks || !Expander<Pair, M, R>::kRanks));
         for (int i = 0; i < nv_; ++i) verts_[i] = from.verts_[i];
         for (int i = 0; i < nf_; ++i) {
             faces_[i] = from.faces_[i], key_[i] = from.key_[i], plane_[i] = from.plane_[i];
             mark_[i] = from.mark_[i], listed_[i] = from.listed_[i];
         }
-        if constexpr (Expander<Pair, M, R>::kRanks && kRanks)
-            for (int i = 0; i < nf_; ++i) seq_[i] = from.seq_[i], stamp_[i] = from.stamp_[i];
         for (int i = 0; i < n_free_; ++i) free_[i] = from.free_[i];
         for (int i = 0; i < n_near_; ++i) near_[i] = from.near_[i];
         for (int i = 0; i < n_written_; ++i) written_[i] = from.written_[i];
-        n_resolved_ = from.n_resolved_;
-        for (int i = 0; i < n_resolved_; ++i) resolved_[i] = from.resolved_[i];
-        if (ranked_) rank_all();  // the smaller one's heap holds stale entries too; the live ones suffice
+        if constexpr (kRanks) ranking_.take(from.ranking_, key_, nf_);
     }
 
     // Whether the near faces were ranked (RankFrom reached).
-    bool ranked() const { return ranked_; }
+    bool ranked() const { return ranking_.on(); }
 
     CoreDepth run(double tolerance) {
         CoreDepth out;
@@ -98,7 +75,10 @@ public:
                 least_two(f, second);
                 if (faces_[f].resolved) break;
                 resolve(faces_[f]);
-                raise_key(f, faces_[f].d);
+                const double was = key_[f];
+                key_[f] = faces_[f].d;
+                if constexpr (kRanks)
+                    if (ranking_.on()) ranking_.resolved(f, key_[f] != was, key_);
                 if (second < 0 || key_[f] <= key_[second]) break;
                 f = second;
                 if (faces_[f].resolved) break;
@@ -135,10 +115,11 @@ private:
     // when it is kept, else among all. Written with selects, not branches: which face holds the
     // least is data, and branches on it mispredict.
     void least_two(int& first, int& second) {
-        if (ranked_) {
-            if (!near_empty_) return least_two_ranked(first, second);
-            return least_two(nf_, [](int j) { return j; }, first, second);
-        }
+        if constexpr (kRanks)
+            if (ranking_.on()) {
+                if (!ranking_.empty() && ranking_.least_two(key_, first, second)) return;
+                return least_two(nf_, [](int j) { return j; }, first, second);
+            }
         if (n_near_ > 0)
             least_two(n_near_, [&](int j) { return int(near_[j]); }, first, second);
         else  // all faces: a small polytope, or none at most upper (rounding)
@@ -165,13 +146,14 @@ private:
     // (C's smallest support value seen), the only ones that can still come up as the least. A
     // face's key only grows, and the least key is at most the depth, itself at most upper: a face
     // above it is never needed, and most faces of a deep overlap lie there (C's far side). On a
-    // small polytope the list costs more than the scan it saves; on a large one, from kRankFrom
-    // faces, they are ranked instead (below).
+    // small polytope the list costs more than the scan it saves; on a large one, from RankFrom
+    // faces, the scans over it: they are ranked instead (gjk/near_ranking.hpp).
     //
     // After an expansion: the new faces (written_) replace the visible ones in their slots;
     // listed_ marks them so that no slot is listed twice.
     void keep_near(double upper) {
-        if (ranked_) return keep_ranked(upper);
+        if constexpr (kRanks)
+            if (ranking_.on()) return ranking_.step_end(key_, nf_, upper);
         int k = 0;
         if (n_near_ < 0) {  // the first time: every face
             for (int i = 0; i < nf_; ++i) {
@@ -194,113 +176,7 @@ private:
         }
         n_near_ = k;
         if constexpr (kRanks)
-            if (nf_ >= RankFrom) start_ranking(upper);
-    }
-
-    // A large polytope's near faces: those whose key was at most upper when the last expansion
-    // ended, and those resolved since, found in a binary heap over every face by (key, age), the
-    // age being the order in which faces entered the list above (so the same face is least, ties
-    // included). Entries go stale rather than being removed (a face rewritten, freed or resolved
-    // to a larger key is pushed anew), and a step costs the logarithm of the polytope, not its
-    // size: a near-concentric pair of curved shapes, whose depth is reached along a whole circle
-    // of axes, keeps most of its hundreds of faces near, and the scans over them made its
-    // expansion quadratic (world steps doing thousands of them, found by fuzzing the world).
-    struct Ranked {
-        double key;
-        uint32_t seq;
-        int16_t face;
-    };
-    static constexpr int kRankCap = 2 * kRankF;  // full: rebuilt from the live faces (fewer than kMaxF)
-    static bool before(const Ranked& a, const Ranked& b) { return a.key < b.key || (a.key == b.key && a.seq < b.seq); }
-    bool live(const Ranked& e) const { return e.seq == seq_[e.face] && e.key == key_[e.face]; }
-    bool near(int f) const { return stamp_[f] == step_ || key_[f] <= near_upper_; }
-
-    // The list's faces take its order as their age, the others (all above upper) come after.
-    void start_ranking(double upper) {
-        for (int i = 0; i < nf_; ++i) seq_[i] = uint32_t(n_near_ + i), stamp_[i] = 0;
-        for (int j = 0; j < n_near_; ++j) seq_[near_[j]] = uint32_t(j);
-        next_seq_ = uint32_t(n_near_ + nf_);
-        ranked_ = true;
-        rank_all();
-        keep_ranked(upper);
-    }
-    void keep_ranked(double upper) {
-        near_upper_ = upper;
-        ++step_;
-        n_resolved_ = 0;
-        drop_stale();
-        near_empty_ = n_rank_ == 0 || !(rank_[0].key <= upper);
-    }
-    void rank(int f) {
-        if (n_rank_ == kRankCap) return rank_all();  // which ranks f as it is now
-        int at = n_rank_++;
-        const Ranked e{key_[f], seq_[f], int16_t(f)};
-        while (at > 0) {
-            const int parent = (at - 1) / 2;
-            if (!before(e, rank_[parent])) break;
-            rank_[at] = rank_[parent];
-            at = parent;
-        }
-        rank_[at] = e;
-    }
-    void rank_all() {
-        n_rank_ = 0;
-        for (int i = 0; i < nf_; ++i)
-            if (key_[i] < INFINITY) rank(i);
-    }
-    void unrank_top() {
-        const Ranked e = rank_[--n_rank_];
-        int at = 0;
-        for (;;) {
-            int child = 2 * at + 1;
-            if (child >= n_rank_) break;
-            if (child + 1 < n_rank_ && before(rank_[child + 1], rank_[child])) ++child;
-            if (!before(rank_[child], e)) break;
-            rank_[at] = rank_[child];
-            at = child;
-        }
-        if (n_rank_ > 0) rank_[at] = e;
-    }
-    void drop_stale() {
-        while (n_rank_ > 0 && !live(rank_[0])) unrank_top();
-    }
-    // A resolved face's key: near for the rest of the step, ranked anew when it grew (a NaN key
-    // is not ranked: it is never least).
-    void raise_key(int f, double key) {
-        const bool grew = key != key_[f];
-        key_[f] = key;
-        if (!kRanks || !ranked_) return;
-        stamp_[f] = step_;
-        resolved_[n_resolved_++] = int16_t(f);
-        if (grew && key == key) rank(f);
-    }
-    // The least of the faces resolved in this step other than `except`, by key and age; -1: none.
-    int least_resolved(int except) const {
-        int best = -1;
-        for (int j = 0; j < n_resolved_; ++j) {
-            const int f = resolved_[j];
-            if (f != except && (best < 0 || before({key_[f], seq_[f], 0}, {key_[best], seq_[best], 0}))) best = f;
-        }
-        return best;
-    }
-    // least_two among the near faces. The heap's least live entry is the least near face when it
-    // is near; else only faces resolved in this step are (the others near lie at most upper, below it).
-    void least_two_ranked(int& first, int& second) {
-        drop_stale();
-        if (n_rank_ == 0 || !near(rank_[0].face)) {
-            first = least_resolved(-1);
-            if (first < 0)
-                return least_two(
-                    nf_, [](int j) { return j; }, first, second);
-            second = least_resolved(first);
-            return;
-        }
-        const Ranked top = rank_[0];
-        first = top.face;
-        unrank_top();
-        drop_stale();
-        second = n_rank_ > 0 && near(rank_[0].face) ? rank_[0].face : least_resolved(first);
-        rank(first);
+            if (nf_ >= RankFrom) ranking_.start(key_, nf_, near_, n_near_, upper);
     }
 
     // C's support point along d at the working scale (set by build_tetrahedron).
@@ -340,34 +216,9 @@ private:
         return true;
     }
 
-    // Where the origin's nearest point on face f lies: the area coordinates of its projection
-    // p = off n, or, when p falls outside the triangle, the nearest point of its edges, whose
-    // distance (above the plane's) becomes f.d. Done only for faces that come up as the nearest
-    // (most never do): d can only grow, so a face whose d is resolved and least is the nearest.
+    // Face f's nearest point to the origin (resolve_face, gjk/polytope.hpp).
     [[gnu::always_inline]] void resolve(Face& f) const {
-        f.resolved = true;
-        const Vec3 w[3] = {verts_[f.v[0]].w, verts_[f.v[1]].w, verts_[f.v[2]].w};
-        const Vec3 p = f.off * f.n;
-        bool inside = true;
-        for (int c = 0; c < 3; ++c) {
-            f.l[c] = dot(f.n, cross(w[(c + 1) % 3] - p, w[(c + 2) % 3] - p));
-            inside = inside && f.l[c] >= 0;
-        }
-        f.edge = !(inside || f.off < 0);
-        if (!f.edge) return;
-        double best = INFINITY;
-        for (int c = 0; c < 3; ++c) {
-            const Vec3 e = w[(c + 1) % 3] - w[c];
-            const double ee = dot(e, e);
-            double t = ee > 0 ? -dot(w[c], e) / ee : 0;
-            t = t < 0 ? 0 : (t > 1 ? 1 : t);
-            const double dist = length(w[c] + t * e);
-            if (dist < best) {
-                best = dist;
-                f.l[c] = 1 - t, f.l[(c + 1) % 3] = t, f.l[(c + 2) % 3] = 0;
-            }
-        }
-        if (best > f.d) f.d = best;
+        resolve_face(f, verts_[f.v[0]].w, verts_[f.v[1]].w, verts_[f.v[2]].w);
     }
 
     // The point of face f's corners (C's, A's or B's: part) with weights l.
@@ -641,11 +492,7 @@ private:
         mark_[s] = 0;
         key_[s] = p.off;
         plane_[s] = p;
-        if constexpr (kRanks) {
-            seq_[s] = next_seq_++;
-            stamp_[s] = 0;  // step_ is at least 1 once the faces are ranked
-            if (ranked_) rank(s);
-        }
+        if constexpr (kRanks) ranking_.put(s, key_);
     }
 
     // The smallest support value seen and its axis: an upper bound of the depth (B moved by it
@@ -737,17 +584,7 @@ private:
     uint32_t listed_[kMaxF];     // == listing_: written by the last expansion
     uint32_t listing_ = 0;
     int n_near_ = -1, n_written_ = 0;  // n_near_ -1: near_ not kept yet
-    // A large polytope's near faces (start_ranking): a heap by (key, age) over every face, and the
-    // faces resolved in this step (stamp_ == step_), near whatever their new key.
-    double near_upper_ = INFINITY;
-    uint32_t step_ = 0, next_seq_ = 0;
-    bool ranked_ = false, near_empty_ = false;
-    Slots<uint32_t, kRankF> seq_;    // age: the order faces entered the near faces
-    Slots<uint32_t, kRankF> stamp_;  // == step_: resolved in this step
-    Slots<Ranked, kRankCap> rank_;
-    int n_rank_ = 0;
-    int16_t resolved_[kRankF];
-    int n_resolved_ = 0;
+    NearRanking<kRanks ? kMaxF : 1> ranking_;  // from RankFrom faces on
     int n_free_ = 0;
     int nv_ = 0, nf_ = 0;
 };

@@ -3,6 +3,7 @@
 // fixed-size arrays, and the depth it answers with. The algorithm is in gjk/expander.hpp.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "gjk/termination.hpp"
@@ -39,6 +40,36 @@ struct Face {
     int16_t adj[3];  // the face across edge k (v[k] -> v[k + 1]), by slot
     uint8_t back[3];  // the index of edge k in face adj[k] (where it runs v[k + 1] -> v[k])
 };
+
+// Where the origin's nearest point on face f (corners w0, w1, w2) lies: the area coordinates of
+// its projection p = off n, or, when p falls outside the triangle, the nearest point of its edges,
+// whose distance (above the plane's) becomes f.d. Done only for faces that come up as the nearest
+// (most never do): d can only grow, so a face whose d is resolved and least is the nearest.
+[[gnu::always_inline]] inline void resolve_face(Face& f, Vec3 w0, Vec3 w1, Vec3 w2) {
+    f.resolved = true;
+    const Vec3 w[3] = {w0, w1, w2};
+    const Vec3 p = f.off * f.n;
+    bool inside = true;
+    for (int c = 0; c < 3; ++c) {
+        f.l[c] = dot(f.n, cross(w[(c + 1) % 3] - p, w[(c + 2) % 3] - p));
+        inside = inside && f.l[c] >= 0;
+    }
+    f.edge = !(inside || f.off < 0);
+    if (!f.edge) return;
+    double best = INFINITY;
+    for (int c = 0; c < 3; ++c) {
+        const Vec3 e = w[(c + 1) % 3] - w[c];
+        const double ee = dot(e, e);
+        double t = ee > 0 ? -dot(w[c], e) / ee : 0;
+        t = t < 0 ? 0 : (t > 1 ? 1 : t);
+        const double dist = length(w[c] + t * e);
+        if (dist < best) {
+            best = dist;
+            f.l[c] = 1 - t, f.l[(c + 1) % 3] = t, f.l[(c + 2) % 3] = 0;
+        }
+    }
+    if (best > f.d) f.d = best;
+}
 
 // The weights of a resolved face's nearest point (f.l normalised when inside; equal thirds
 // when rounding leaves no positive area).
