@@ -172,15 +172,23 @@ struct Simplex {
     // >= 0 and normalised (as closest_points takes them) lies within sqrt(rel_sq) of the
     // simplex's size from v.
     bool coordinates_reproduce_v(double rel_sq) const {
+        using Fn = bool (Simplex::*)(double) const;
+        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+            return std::array<Fn, 16>{&Simplex::coordinates_reproduce_v_t<M>...};
+        }(std::make_integer_sequence<unsigned, 16>{});
+        return (this->*table[bits & 15u])(rel_sq);
+    }
+    template <unsigned S>
+    bool coordinates_reproduce_v_t(double rel_sq) const {
         Vec3 p{};
         double m = 0, sum = 0;
-        for (unsigned r = bits; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
+        for_bits<S>([&](auto ic) {
+            constexpr int i = decltype(ic)::value;
             const double l = lambda[i] > 0 ? lambda[i] : 0;
             p += l * y[i];
             sum += l;
             m = norm_sq[i] > m ? norm_sq[i] : m;
-        }
+        });
         if (!(sum > 0)) return false;
         const Vec3 d = (1 / sum) * p - v;
         return dot(d, d) <= rel_sq * m;
@@ -310,27 +318,36 @@ struct Simplex {
 
     // Closest points on A and B (A's frame) from the barycentric coordinates of v. Coordinates that
     // rounding pushed below zero (ill-conditioned simplices) are clamped, so the points stay convex
-    // combinations of support points: on their shapes.
+    // combinations of support points: on their shapes. One instantiation per subset (the points'
+    // loop unrolled); every sum is taken in the order of the slots.
     void closest_points(Vec3& out_a, Vec3& out_b) const {
+        using Fn = void (Simplex::*)(Vec3&, Vec3&) const;
+        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+            return std::array<Fn, 16>{&Simplex::closest_points_t<M>...};
+        }(std::make_integer_sequence<unsigned, 16>{});
+        (this->*table[bits & 15u])(out_a, out_b);
+    }
+    template <unsigned S>
+    void closest_points_t(Vec3& out_a, Vec3& out_b) const {
         double l[4] = {0, 0, 0, 0}, sum = 0;
-        for (unsigned r = bits; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
+        for_bits<S>([&](auto ic) {
+            constexpr int i = decltype(ic)::value;
             l[i] = lambda[i] > 0 ? lambda[i] : 0;
             sum += l[i];
-        }
-        Vec3 a{}, b{};
+        });
         if (!(sum > 0)) {
-            const int i = std::countr_zero(bits | 16u) & 3;
+            constexpr int i = std::countr_zero(S | 16u) & 3;
             out_a = pa[i];
             out_b = pb[i];
             return;
         }
         const double inv = 1 / sum;
-        for (unsigned r = bits; r; r &= r - 1) {
-            const int i = std::countr_zero(r);
+        Vec3 a{}, b{};
+        for_bits<S>([&](auto ic) {
+            constexpr int i = decltype(ic)::value;
             a += (l[i] * inv) * pa[i];
             b += (l[i] * inv) * pb[i];
-        }
+        });
         out_a = a;
         out_b = b;
     }
