@@ -24,12 +24,12 @@ struct PointSupport {
 };
 struct SegmentSupport {
     double h;
-    Vec3 operator()(Vec3 d) const { return {0, 0, support_sign(d.z) * h}; }
+    Vec3 operator()(Vec3 d) const { return {0, 0, toward(d.z, h)}; }
 };
 struct BoxSupport {
     Vec3 h;
     Vec3 operator()(Vec3 d) const {
-        return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z};
+        return {toward(d.x, h.x), toward(d.y, h.y), toward(d.z, h.z)};
     }
 };
 // Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of

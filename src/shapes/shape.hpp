@@ -10,6 +10,10 @@
 #include <cstdint>
 #include <vector>
 
+#if defined(__SSE2__) && defined(__x86_64__)
+#include <emmintrin.h>
+#endif
+
 #include "math/transform.hpp"
 
 namespace kairos {
@@ -136,13 +140,25 @@ struct DiskShape final : Shape {
 
 // Sign used by supports: +1 for zero, so a zero direction still yields a point of the shape.
 inline double support_sign(double v) { return v < 0 ? -1.0 : 1.0; }
+// support_sign(d) * h, bit for bit (NaN and zero d keep h), without a branch: the signs of a
+// support direction's coordinates change unpredictably from one GJK iteration to the next, and the
+// compiler turns the select into a branch, mispredicted about as often. On x86-64 the comparison's
+// mask flips h's sign bit.
+inline double toward(double d, double h) {
+#if defined(__SSE2__) && defined(__x86_64__)
+    const __m128d negative = _mm_cmplt_sd(_mm_set_sd(d), _mm_setzero_pd());
+    return _mm_cvtsd_f64(_mm_xor_pd(_mm_set_sd(h), _mm_and_pd(negative, _mm_set_sd(-0.0))));
+#else
+    return support_sign(d) * h;
+#endif
+}
 
 // Supports of the two solids of revolution about z (local frame, any finite d): a cylinder of
 // radius r over z in [-h, h], and a cone with its apex at (0, 0, h) and its base disk of radius r
 // at z = -h. support() and the GJK kernels (RevolutionSupport) share them.
 inline Vec3 cylinder_support(double r, double h, Vec3 d) {
     const Planar radial = radial_unit(d.x, d.y);
-    return {r * radial.x, r * radial.y, support_sign(d.z) * h};
+    return {r * radial.x, r * radial.y, toward(d.z, h)};
 }
 inline Vec3 cone_support(double r, double h, Vec3 d) {
     const Planar radial = radial_unit(d.x, d.y);
@@ -159,16 +175,16 @@ inline Vec3 support(const Shape& s, Vec3 d) {
         case ShapeKind::Point:
             return {};
         case ShapeKind::Segment:
-            return {0, 0, support_sign(d.z) * static_cast<const SegmentShape&>(s).half_length};
+            return {0, 0, toward(d.z, static_cast<const SegmentShape&>(s).half_length)};
         case ShapeKind::Sphere:
             return static_cast<const SphereShape&>(s).radius * normalized_or(d, {0, 0, 1});
         case ShapeKind::Box: {
             const Vec3 h = static_cast<const BoxShape&>(s).half_extents;
-            return {support_sign(d.x) * h.x, support_sign(d.y) * h.y, support_sign(d.z) * h.z};
+            return {toward(d.x, h.x), toward(d.y, h.y), toward(d.z, h.z)};
         }
         case ShapeKind::Capsule: {
             const auto& c = static_cast<const CapsuleShape&>(s);
-            return Vec3{0, 0, support_sign(d.z) * c.half_height} + c.radius * normalized_or(d, {0, 0, 1});
+            return Vec3{0, 0, toward(d.z, c.half_height)} + c.radius * normalized_or(d, {0, 0, 1});
         }
         case ShapeKind::Cylinder: {
             const auto& c = static_cast<const CylinderShape&>(s);
