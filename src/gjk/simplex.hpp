@@ -6,9 +6,9 @@
 
 #include <array>
 #include <bit>
-#include <cstdint>
 #include <utility>
 
+#include "gjk/subsets.hpp"
 #include "math/math.hpp"
 
 namespace kairos {
@@ -20,32 +20,6 @@ inline constexpr double kNearContact = (64 * 2.220446049250313e-16) * (64 * 2.22
 // Threshold of rule 6 (no progress): the type's machine epsilon.
 inline constexpr double kNoProgress = 2.220446049250313e-16;
 
-// Subsets of a 4-bit mask ordered by size (smallest first), the empty set included; built at
-// compile time. Johnson's test is tried on smaller sub-simplices first, and determinants of a
-// subset are computed after those of its own subsets.
-struct SubsetTable {
-    uint8_t subsets[16][16] = {};
-    uint8_t count[16] = {};
-    constexpr SubsetTable() {
-        for (unsigned m = 0; m < 16; ++m) {
-            unsigned n = 0;
-            for (int size = 0; size <= 4; ++size)
-                for (unsigned s = 0; s < 16; ++s)
-                    if ((s & ~m) == 0 && std::popcount(s) == size) subsets[m][n++] = static_cast<uint8_t>(s);
-            count[m] = static_cast<uint8_t>(n);
-        }
-    }
-};
-inline constexpr SubsetTable kSubsets{};
-
-// Number of points in a 4-bit mask (std::popcount compiles to a library call without -mpopcnt).
-inline constexpr int kBitCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
-
-// The simplex of GJK: up to four points y_i of A - B with their support points on A and B, and
-// Johnson's determinants Delta_i(X) and u_X = sum Delta_i(X) y_i cached per subset X (bit mask).
-// The dot products y_i.y_j of the classical recursion enter through u_X, in a form that does not
-// cancel (compute_subset). A slot's entries stay valid while its point stays in the simplex, so
-// adding a point computes only the subsets that contain it.
 // Fixed array of Vec3 left uninitialised on construction (Vec3 zeroes itself by default, and
 // the simplex is built on every query; only entries written by add() are ever read).
 template <int N>
@@ -58,6 +32,11 @@ struct RawVec3s {
     const Vec3& operator[](int i) const { return v[i]; }
 };
 
+// The simplex of GJK: up to four points y_i of A - B with their support points on A and B, and
+// Johnson's determinants Delta_i(X) and u_X = sum Delta_i(X) y_i cached per subset X (bit mask).
+// The dot products y_i.y_j of the classical recursion enter through u_X, in a form that does not
+// cancel (compute_subset). A slot's entries stay valid while its point stays in the simplex, so
+// adding a point computes only the subsets that contain it.
 struct Simplex {
     RawVec3s<4> y, pa, pb;
     double norm_sq[4];        // ||y_i||^2
