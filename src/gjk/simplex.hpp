@@ -151,10 +151,7 @@ struct Simplex {
     // >= 0 and normalised (as closest_points takes them) lies within sqrt(rel_sq) of the
     // simplex's size from v.
     bool coordinates_reproduce_v(double rel_sq) const {
-        using Fn = bool (Simplex::*)(double) const;
-        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-            return std::array<Fn, 16>{&Simplex::coordinates_reproduce_v_t<M>...};
-        }(std::make_integer_sequence<unsigned, 16>{});
+        static constexpr auto table = per_subset([]<unsigned M>() { return &Simplex::coordinates_reproduce_v_t<M>; });
         return (this->*table[bits & 15u])(rel_sq);
     }
     template <unsigned S>
@@ -270,11 +267,7 @@ struct Simplex {
 
     // set_from_subset_t for a subset known at run time.
     void set_from_subset(unsigned s) {
-        using Fn = void (Simplex::*)();
-        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-            return std::array<Fn, 16>{&Simplex::set_from_subset_t<M>...};
-        }
-        (std::make_integer_sequence<unsigned, 16>{});
+        static constexpr auto table = per_subset([]<unsigned M>() { return &Simplex::set_from_subset_t<M>; });
         (this->*table[s & 15u])();
     }
 
@@ -300,10 +293,7 @@ struct Simplex {
     // combinations of support points: on their shapes. One instantiation per subset (the points'
     // loop unrolled); every sum is taken in the order of the slots.
     void closest_points(Vec3& out_a, Vec3& out_b) const {
-        using Fn = void (Simplex::*)(Vec3&, Vec3&) const;
-        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-            return std::array<Fn, 16>{&Simplex::closest_points_t<M>...};
-        }(std::make_integer_sequence<unsigned, 16>{});
+        static constexpr auto table = per_subset([]<unsigned M>() { return &Simplex::closest_points_t<M>; });
         (this->*table[bits & 15u])(out_a, out_b);
     }
     template <unsigned S>
@@ -345,11 +335,7 @@ struct Simplex {
         y[last] = w;
         pa[last] = a;
         pb[last] = b;
-        using Fn = Outcome (Simplex::*)(double);
-        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-            return std::array<Fn, 15>{&Simplex::add_from<M>...};
-        }
-        (std::make_integer_sequence<unsigned, 15>{});
+        static constexpr auto table = per_subset<15>([]<unsigned M>() { return &Simplex::add_from<M>; });
         return (this->*table[bits & 15u])(prev_norm_sq);
     }
 
@@ -529,10 +515,7 @@ struct Simplex {
         if constexpr (std::popcount(S) >= 2) compute_subset_t<S>();
     }
     void recompute_all(unsigned all) {
-        using Fn = void (Simplex::*)();
-        static constexpr auto table = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-            return std::array<Fn, 16>{&Simplex::recompute_all_t<M>...};
-        }(std::make_integer_sequence<unsigned, 16>{});
+        static constexpr auto table = per_subset([]<unsigned M>() { return &Simplex::recompute_all_t<M>; });
         (this->*table[all & 15u])();
     }
 

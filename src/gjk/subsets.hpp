@@ -3,8 +3,10 @@
 // subset), shared by Johnson's sub-algorithm (simplex.hpp) and the cast's rebuild (casts/rebuild.hpp).
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
+#include <utility>
 
 namespace kairos::gjk_detail {
 
@@ -28,5 +30,15 @@ inline constexpr SubsetTable kSubsets{};
 
 // Number of points in a 4-bit mask (std::popcount compiles to a library call without -mpopcnt).
 inline constexpr int kBitCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+// The array of make.template operator()<S>() for S = 0 .. N-1: a member's instantiations per subset
+// (each with its loops over the points unrolled at compile time), indexed by a mask known only at
+// run time.
+template <unsigned N = 16, class Make>
+constexpr auto per_subset(Make make) {
+    return [&]<unsigned... M>(std::integer_sequence<unsigned, M...>) {
+        return std::array{make.template operator()<M>()...};
+    }(std::make_integer_sequence<unsigned, N>{});
+}
 
 }  // namespace kairos::gjk_detail
