@@ -28,9 +28,7 @@ struct SegmentSupport {
 };
 struct BoxSupport {
     Vec3 h;
-    Vec3 operator()(Vec3 d) const {
-        return {toward(d.x, h.x), toward(d.y, h.y), toward(d.z, h.z)};
-    }
+    Vec3 operator()(Vec3 d) const { return {toward(d.x, h.x), toward(d.y, h.y), toward(d.z, h.z)}; }
 };
 // Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
 // branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
