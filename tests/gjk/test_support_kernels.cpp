@@ -1,16 +1,21 @@
 // SPDX-License-Identifier: MIT
 // The support kernels GJK and the casts inline (src/gjk/support_kernels.hpp) against brute force:
-// the small hull's vectorised scan picks the vertex its tie rule names, and the cylinder's and
-// cone's kernel gives support()'s point, a maximiser over their rims and apex.
+// the small hull's vectorised scan picks the vertex its tie rule names, the cylinder's and cone's
+// kernel gives support()'s point, a maximiser over their rims and apex, and the branchless sign
+// of boxes, segments and caps is the product it replaced.
 #include <gtest/gtest.h>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <vector>
 #include "gjk/support_kernels.hpp"
 #include "gjk_test_support.hpp"
 
 using namespace kairos;
+using kernels::BoxSupport;
 using kernels::RevolutionSupport;
 using kernels::SmallHullSupport;
 
@@ -119,4 +124,68 @@ TEST(SupportKernels, CylinderAndConeKernelIsTheShapesSupport) {
     EXPECT_EQ(different, 0);
     EXPECT_EQ(beaten, 0);
     EXPECT_EQ(outside, 0);
+}
+
+// toward(d, h) is support_sign(d) * h bit for bit (the masked sign flip it replaced a branch
+// with): for directions of every class (signed zeros, subnormals, infinities, NaNs of both signs)
+// and non-NaN sizes, zero and infinite ones included. Then the box's support, by the shape and by
+// the kernel, against brute force over its eight corners: the corner reaching farthest along d,
+// with +h on every axis where d is zero or NaN (the tie rule that keeps a zero direction's point
+// on the shape).
+TEST(SupportKernels, BranchlessSignIsTheProductBitForBit) {
+    const double nan = std::numeric_limits<double>::quiet_NaN(), tiny = std::numeric_limits<double>::denorm_min();
+    const double ds[] = {0.0,   -0.0,   tiny,     -tiny,     1e-300, -1e-300, 1.0,       -1.0,
+                         1e300, -1e300, INFINITY, -INFINITY, nan,    -nan,    0x1p-1022, -0x1p-1022};
+    const double hs[] = {0.0, -0.0, tiny, 1e-300, 0.5, 1.0, 1e300, INFINITY};
+    int pairs = 0, wrong = 0, flipped = 0;
+    for (double d : ds)
+        for (double h : hs) {
+            const double got = toward(d, h), want = support_sign(d) * h;
+            ++pairs;
+            flipped += std::signbit(got) != std::signbit(h);
+            if (std::bit_cast<uint64_t>(got) != std::bit_cast<uint64_t>(want) && ++wrong <= 10)
+                ADD_FAILURE() << "toward(" << d << ", " << h << ") = " << got << ", the product " << want;
+        }
+    EXPECT_EQ(wrong, 0);
+    // Both outcomes occur: the sign is flipped for the negative directions only.
+    EXPECT_GT(flipped, pairs / 4);
+    EXPECT_LT(flipped, pairs / 2);
+
+    const uint64_t seed = 2103;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Vec3 half{0.5, 1.5, 0.25};
+    const BoxShape box(half);
+    const BoxSupport kernel{half};
+    int cases = 0, off = 0, with_zero = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        Vec3 d{u(rng), u(rng), u(rng)};
+        for (int i = 0; i < 3; ++i) {
+            const int pick = int(8 * (u(rng) + 1)) % 8;
+            if (pick == 0) d[i] = 0.0;
+            if (pick == 1) d[i] = -0.0;
+            if (pick == 2) d[i] = (u(rng) < 0 ? -1 : 1) * tiny;
+        }
+        bool zero = false;
+        Vec3 want;
+        for (int i = 0; i < 3; ++i) {
+            zero = zero || d[i] == 0;
+            // Brute force over the two faces along axis i (the component scaled by 2^1000, exactly,
+            // so a subnormal one does not round its products to zero); a zero component keeps +h.
+            const double di = std::ldexp(d[i], 1000);
+            want[i] = di * -half[i] > di * half[i] ? -half[i] : half[i];
+        }
+        with_zero += zero;
+        ++cases;
+        const Vec3 a = kernel(d), b = support(box, d);
+        if ((!(a == want) || !(b == want) || std::signbit(a.x) != std::signbit(want.x) ||
+             std::signbit(a.y) != std::signbit(want.y) || std::signbit(a.z) != std::signbit(want.z)) &&
+            ++off <= 10)
+            ADD_FAILURE() << "seed " << seed << " trial " << trial << ": direction " << d.x << " " << d.y << " " << d.z
+                          << " gave the corner " << a.x << " " << a.y << " " << a.z;
+    }
+    EXPECT_EQ(off, 0);
+    // Zero components (the tie rule) and none both occur.
+    EXPECT_GT(with_zero, cases / 4);
+    EXPECT_LT(with_zero, cases);
 }
