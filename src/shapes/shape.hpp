@@ -140,10 +140,10 @@ struct DiskShape final : Shape {
 
 // Sign used by supports: +1 for zero, so a zero direction still yields a point of the shape.
 inline double support_sign(double v) { return v < 0 ? -1.0 : 1.0; }
-// support_sign(d) * h, bit for bit (NaN and zero d keep h), without a branch: the signs of a
-// support direction's coordinates change unpredictably from one GJK iteration to the next, and the
-// compiler turns the select into a branch, mispredicted about as often. On x86-64 the comparison's
-// mask flips h's sign bit.
+// support_sign(d) * h, bit for bit for any h but a NaN (NaN and zero d keep h), without a
+// branch: the signs of a support direction's coordinates change unpredictably from one GJK
+// iteration to the next, and the compiler turns the select into a branch, mispredicted about as
+// often. On x86-64 the comparison's mask flips h's sign bit.
 inline double toward(double d, double h) {
 #if defined(__SSE2__) && defined(__x86_64__)
     const __m128d negative = _mm_cmplt_sd(_mm_set_sd(d), _mm_setzero_pd());
