@@ -30,10 +30,7 @@ bool first_valid_proper(Simplex& s) {
 // current), then the backup pass: the subset with positive determinants whose affine closest
 // point is nearest x.
 inline Simplex::Outcome johnson_proper(Simplex& s, unsigned all) {
-    using Fn = bool (*)(Simplex&);
-    static constexpr auto first = []<unsigned... M>(std::integer_sequence<unsigned, M...>) {
-        return std::array<Fn, 16>{&first_valid_proper<M>...};
-    }(std::make_integer_sequence<unsigned, 16>{});
+    static constexpr auto first = gjk_detail::per_subset([]<unsigned M>() { return &first_valid_proper<M>; });
     if (first[all & 15u](s)) return Simplex::Outcome::Reduced;
     return s.backup(all, INFINITY);
 }
