@@ -21,6 +21,8 @@ template <int MaxF>
 class NearRanking {
 public:
     bool on() const { return on_; }
+    // The heap's entries, stale ones included (for tests: it is rebuilt when full, at 2 MaxF).
+    int entries() const { return n_rank_; }
     // No face was near when the step began: the expander scans every face instead.
     bool empty() const { return empty_; }
 

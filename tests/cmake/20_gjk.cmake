@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # GJK core tests: closed forms, random polytopes against the long double oracle, hard cases.
 kairos_gtest(test_gjk SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk.cpp ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_seed.cpp
-             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_support_kernels.cpp
+             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_support_kernels.cpp ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_near_ranking.cpp
              LIBS kairos_core)
 kairos_gtest(test_closed_forms SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_closed_forms.cpp LIBS kairos_core)
 # The same queries through the shared library's C ABI.
