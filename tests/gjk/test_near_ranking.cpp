@@ -94,7 +94,8 @@ TEST(NearRanking, PicksTheListsFacesThroughRebuildsTiesAndResolutions) {
             int f = -1;
             for (int round = 0; round < kFaces; ++round) {
                 int got1 = -1, got2 = -1, want1 = -1, want2 = -1;
-                if (ranking.empty() || !ranking.least_two(key, got1, got2)) scan_least_two(all_faces(nf), key, got1, got2);
+                if (ranking.empty() || !ranking.least_two(key, got1, got2))
+                    scan_least_two(all_faces(nf), key, got1, got2);
                 scan_least_two(empty ? all_faces(nf) : list, key, want1, want2);
                 ++queries;
                 if (got1 != want1 || got2 != want2) mismatch(sequence, step, "least two", got1, got2, want1, want2);
@@ -148,7 +149,7 @@ TEST(NearRanking, PicksTheListsFacesThroughRebuildsTiesAndResolutions) {
                 ranking.put(slot, key);
             }
             upper = pick(0, 299) == 0 ? std::min(upper, *std::min_element(key, key + nf) - 0.125)
-                                     : std::max(std::min(upper, 2.5), upper - 0.125 * pick(0, 2));
+                                      : std::max(std::min(upper, 2.5), upper - 0.125 * pick(0, 2));
             // keep_near: the listed faces not rewritten and still at most upper, then the new ones.
             std::vector<int> next;
             for (const int i : list)
@@ -159,9 +160,10 @@ TEST(NearRanking, PicksTheListsFacesThroughRebuildsTiesAndResolutions) {
             ranking.step_end(key, nf, upper);
         }
     }
-    std::printf("near ranking: %d queries over %d steps (%d with no face near), %d heap rebuilds; the least a "
-                "resolved face above the bound %d times, the runner-up %d times, none %d times\n",
-                queries, steps, empty_steps, rebuilds, first_resolved_above, second_resolved_above, no_second);
+    std::printf(
+        "near ranking: %d queries over %d steps (%d with no face near), %d heap rebuilds; the least a "
+        "resolved face above the bound %d times, the runner-up %d times, none %d times\n",
+        queries, steps, empty_steps, rebuilds, first_resolved_above, second_resolved_above, no_second);
     EXPECT_EQ(mismatches, 0);
     // Every path is taken, and often: rebuilds of a full heap, the least and the runner-up found
     // among the faces resolved in the step, no runner-up, and steps where no face is near.
