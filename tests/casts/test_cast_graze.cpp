@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+// Shape casts that pass a hair beside a shape, where A - B is flat or a point stands still: the
+// truth is known by construction (a plane separates the two all along the motion, by a gap g from
+// 1e-8 to 1e-3 of their size), and both argument orders must say "no hit". The loop's rounding
+// rules once stopped on such pairs (support points tied along the plane's normal) and the stop was
+// read as a contact in one order only (a hard-input sweep found it: a segment gliding 1.3e-6 over
+// another, a point 4e-9 from a segment with no motion). With g = 0 the pairs touch: a hit, the
+// control that the placements do meet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "casts/cast.hpp"
+#include "shapes/shape.hpp"
+
+using namespace kairos;
+
+namespace {
+
+constexpr double kTol = 1e-10;  // the public default
+constexpr uint32_t kMaxIt = 256;
+
+Quat random_quat(std::mt19937_64& rng) {
+    std::normal_distribution<double> g(0, 1);
+    const Quat q{g(rng), g(rng), g(rng), g(rng)};
+    return normalized(q);
+}
+
+Vec3 random_unit(std::mt19937_64& rng) {
+    std::normal_distribution<double> g(0, 1);
+    return normalized_or(Vec3{g(rng), g(rng), g(rng)}, Vec3{1, 0, 0});
+}
+
+struct Tally {
+    int casts = 0, wrong = 0;
+    void check(bool hit, bool want, uint64_t seed, int trial, const char* what, double gap, int order) {
+        ++casts;
+        if (hit != want && ++wrong <= 10)
+            ADD_FAILURE() << "seed " << seed << " trial " << trial << " " << what << " gap " << gap << " order "
+                          << order << ": hit " << hit << ", expected " << want;
+    }
+};
+
+}  // namespace
+
+// Two segments in parallel planes g apart (normal n = da x db), B sliding across A along the
+// planes so that their projections cross: their distance is g all along (0: they touch).
+TEST(ShapeCastGraze, SegmentsGlidingOverEachOthersPlane) {
+    const uint64_t seed = 7301;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Tally tally;
+    for (int trial = 0; trial < 600; ++trial) {
+        const double ha = 0.5 + 1.5 * u(rng), hb = 0.5 + 1.5 * u(rng);
+        const SegmentShape a(ha), b(hb);
+        const Quat qa = random_quat(rng), qb = random_quat(rng);
+        const Vec3 da = to_matrix(qa) * Vec3{0, 0, 1}, db = to_matrix(qb) * Vec3{0, 0, 1};
+        const Vec3 n = normalized_or(cross(da, db), Vec3{});
+        if (!(dot(n, n) > 0.5) || std::fabs(dot(da, db)) > 0.99) continue;
+        const Vec3 m = normalized_or(cross(n, random_unit(rng)), Vec3{});  // the motion's direction
+        if (!(dot(m, m) > 0.5)) continue;
+        const double size = std::fmax(ha, hb);
+        const double gap = trial % 6 == 0 ? 0.0 : size * std::pow(10.0, -8 + 5 * u(rng));
+        const Vec3 ca{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
+        const double reach = 3 * size;  // B starts and ends this far to the side
+        const Vec3 start = ca + gap * n - reach * m;
+        const Vec3 motion = 2 * reach * m;
+        const Transform pa = make_transform(ca, qa), pb = make_transform(start, qb);
+        const bool want = gap == 0;
+        tally.check(shape_cast(a, pa, {}, b, pb, motion, kTol, kMaxIt).hit, want, seed, trial, "segments", gap, 0);
+        tally.check(shape_cast(b, pb, motion, a, pa, {}, kTol, kMaxIt).hit, want, seed, trial, "segments", gap, 1);
+    }
+    std::printf("segments gliding over each other's plane: %d casts\n", tally.casts);
+    EXPECT_EQ(tally.wrong, 0);
+    EXPECT_GT(tally.casts, 1000);
+}
+
+// A point beside a segment (off its middle, perpendicular) or above a box's face, with no motion
+// or moving along the face: the gap stays g. Both orders.
+TEST(ShapeCastGraze, APointBesideASegmentOrOverABoxFace) {
+    const uint64_t seed = 7302;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Tally tally;
+    const PointShape point;
+    for (int trial = 0; trial < 600; ++trial) {
+        const Quat q = random_quat(rng);
+        const Vec3 c{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
+        const Transform pose = make_transform(c, q);
+        const bool touching = trial % 6 == 0;
+        if (trial % 2 == 0) {
+            const double h = 0.5 + 1.5 * u(rng);
+            const SegmentShape seg(h);
+            const double gap = touching ? 0.0 : h * std::pow(10.0, -8 + 5 * u(rng));
+            // Beside the segment at height z in (-h, h), along a direction perpendicular to it.
+            const double phi = 6.283185307179586 * u(rng), z = h * (1.6 * u(rng) - 0.8);
+            const Vec3 side{std::cos(phi), std::sin(phi), 0};
+            const Vec3 p = pose.apply(Vec3{0, 0, z} + gap * side);
+            const Transform pp = make_transform(p, {});
+            tally.check(shape_cast(point, pp, {}, seg, pose, {}, kTol, kMaxIt).hit, touching, seed, trial,
+                        "point by segment", gap, 0);
+            tally.check(shape_cast(seg, pose, {}, point, pp, {}, kTol, kMaxIt).hit, touching, seed, trial,
+                        "point by segment", gap, 1);
+        } else {
+            const Vec3 h{0.5 + u(rng), 0.5 + u(rng), 0.5 + u(rng)};
+            const BoxShape box(h);
+            const double size = std::fmax(h.x, std::fmax(h.y, h.z));
+            const double gap = touching ? 0.0 : size * std::pow(10.0, -8 + 5 * u(rng));
+            // Above the top face, crossing it along a line through its inside.
+            const double phi = 6.283185307179586 * u(rng);
+            const Vec3 along{std::cos(phi), std::sin(phi), 0};
+            const Vec3 mid{0.5 * h.x * (2 * u(rng) - 1), 0.5 * h.y * (2 * u(rng) - 1), h.z + gap};
+            const double reach = 3 * size;
+            const Transform pp = make_transform(pose.apply(mid - reach * along), {});
+            const Vec3 motion = pose.rotation * (2 * reach * along);
+            tally.check(shape_cast(point, pp, motion, box, pose, {}, kTol, kMaxIt).hit, touching, seed, trial,
+                        "point over box", gap, 0);
+            tally.check(shape_cast(box, pose, {}, point, pp, motion, kTol, kMaxIt).hit, touching, seed, trial,
+                        "point over box", gap, 1);
+        }
+    }
+    std::printf("points beside segments and over box faces: %d casts\n", tally.casts);
+    EXPECT_EQ(tally.wrong, 0);
+    EXPECT_EQ(tally.casts, 1200);
+}
