@@ -257,6 +257,12 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         }
     }
     if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
+    // A rounding stop within the rounding of the support points themselves is contact (see
+    // Simplex::touches_at_points_rounding; rule 2 measures against |y| alone).
+    if (!intersecting && s.bits != 0 && s.touches_at_points_rounding()) {
+        out.termination = Termination::NearContact;
+        intersecting = true;
+    }
     out.iterations = it;
     if (seed != nullptr) gjk_detail::save_seed(pair, s, intersecting, *seed);
     s.update_lambda();
