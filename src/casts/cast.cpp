@@ -193,7 +193,9 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         at_stop = gjk_distance(a, at_toi(pose_a, translation_a, l.lambda), b, at_toi(pose_b, translation_b, l.lambda),
                                tolerance, max_iterations);
         at_stop_toi = l.lambda;
-        if (at_stop.intersecting || !(at_stop.distance > l.contact_gap) || !is_finite(at_stop.axis)) break;
+        // General supports get a curved shape's slack in contact_gap; polytopes among them do not.
+        const double gap = polytope(a) && polytope(b) ? l.exact_gap : l.contact_gap;
+        if (at_stop.intersecting || !(at_stop.distance > gap) || !is_finite(at_stop.axis)) break;
         const uint32_t used = l.iterations;
         l = cast_from(l.lambda, pose_a.to_local_direction(at_stop.axis), max_iterations - used);
         l.iterations += used;

@@ -61,10 +61,11 @@ struct LocalCast {
     Vec3 v;                 // final x - c
     Vec3 point_a, point_b;  // barycentric points of the final simplex (cores)
     double size;            // max(|x|, the largest distance from x to a simplex point): v's rounding scale
-    // Within this gap of C a stop on a rounding rule counts as contact: twice the stopping rule's
-    // eps * size; on curved and general supports at least 5e-8 of C's spread of support points,
-    // where double precision stalls (the bound the header states for cylinders).
-    double contact_gap;
+    // Within this gap of C a stop on a rounding rule counts as contact: exact_gap, twice the
+    // stopping rule's eps * size; contact_gap, on curved and general supports at least 5e-8 of
+    // C's spread of support points, where double precision stalls (the bound the header states
+    // for cylinders), else exact_gap.
+    double exact_gap, contact_gap;
     uint32_t iterations;
     Termination termination;
 };
@@ -334,11 +335,12 @@ private:
         // v = x - c is rounded at eps |x| too (a one-point simplex within a radius of 1e-15 of x
         // is small, v's direction noise: a normal 1.6 degrees off; found by fuzzing).
         out.size = std::fmax(out.size, std::sqrt(dot(x_, x_)));
-        out.contact_gap = 2 * eps_ * out.size;
-        if constexpr (kCurved) out.contact_gap = std::fmax(out.contact_gap, 5e-8 * std::sqrt(extent_sq_));
+        out.exact_gap = out.contact_gap = 2 * eps_ * out.size;
+        if constexpr (kCurved) out.contact_gap = std::fmax(out.exact_gap, 5e-8 * std::sqrt(extent_sq_));
         if (sup_.scale != 1) {
             const double inv = 1 / sup_.scale;  // exact: a power of two within 2^+-1000
             out.size *= inv;
+            out.exact_gap *= inv;
             out.contact_gap *= inv;
             out.v = inv * out.v;
             out.point_a = inv * out.point_a;

@@ -230,6 +230,31 @@ inline Vec3 support(const Shape& s, Vec3 d) {
     return {};
 }
 
+// True when every support point of `s` is a vertex of finitely many (a polytope: points,
+// segments, boxes, hulls, and transforms, sums and hulls of them), so a support carries only the
+// rounding of its arithmetic; false when some part is curved (its points are rounded).
+inline bool polytope(const Shape& s) {
+    switch (s.kind()) {
+        case ShapeKind::Point:
+        case ShapeKind::Segment:
+        case ShapeKind::Box:
+        case ShapeKind::ConvexHull:
+            return true;
+        case ShapeKind::Transformed:
+            return polytope(*static_cast<const TransformedShape&>(s).child);
+        case ShapeKind::MinkowskiSum: {
+            const auto& m = static_cast<const MinkowskiSumShape&>(s);
+            return polytope(*m.a) && polytope(*m.b);
+        }
+        case ShapeKind::HullOfTwo: {
+            const auto& h = static_cast<const HullOfTwoShape&>(s);
+            return polytope(*h.a) && polytope(*h.b);
+        }
+        default:
+            return false;
+    }
+}
+
 // Support of the shape placed at `pose`, in world frame.
 inline Vec3 support(const Shape& s, const Transform& pose, Vec3 world_direction) {
     return pose.apply(support(s, pose.to_local_direction(world_direction)));

@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
+#include "cast_test_support.hpp"
 #include "casts/cast.hpp"
 #include "shapes/shape.hpp"
 
@@ -124,4 +126,51 @@ TEST(ShapeCastGraze, APointBesideASegmentOrOverABoxFace) {
     std::printf("points beside segments and over box faces: %d casts\n", tally.casts);
     EXPECT_EQ(tally.wrong, 0);
     EXPECT_EQ(tally.casts, 1200);
+}
+
+// A prism of 40 vertices (a large hull: its support climbs, a general support to the cast loop,
+// which gives curved shapes more slack) with a point or a segment gliding over its top face,
+// parallel to it, g above. Both orders.
+TEST(ShapeCastGraze, OverALargeHullsFace) {
+    const uint64_t seed = 7303;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<Vec3> corners;
+    const double radius = 1.3, half_height = 0.4;
+    for (int k = 0; k < 20; ++k) {
+        const double phi = 0.3141592653589793 * k;
+        corners.push_back({radius * std::cos(phi), radius * std::sin(phi), -half_height});
+        corners.push_back({radius * std::cos(phi), radius * std::sin(phi), half_height});
+    }
+    const cast_test::ShapePtr prism = cast_test::hull_shape(corners);
+    ASSERT_EQ(prism->kind(), ShapeKind::ConvexHull);
+    ASSERT_GT(static_cast<const ConvexHullShape&>(*prism).vertices.size(), ConvexHullShape::kHillClimbThreshold);
+    const PointShape point;
+    const SegmentShape segment(0.5);
+    Tally tally;
+    for (int trial = 0; trial < 400; ++trial) {
+        const Quat q = random_quat(rng);
+        const Transform pose = make_transform({u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}, q);
+        const bool touching = trial % 6 == 0;
+        const double gap = touching ? 0.0 : radius * std::pow(10.0, -8 + 5 * u(rng));
+        const double phi = 6.283185307179586 * u(rng);
+        const Vec3 along{std::cos(phi), std::sin(phi), 0};
+        // Through the face's middle region; the segment lies flat, turned about z.
+        const Vec3 mid{0.3 * (u(rng) - 0.5), 0.3 * (u(rng) - 0.5), half_height + gap};
+        const double reach = 4;
+        const Quat flat = normalized(q * Quat{0, std::sin(0.7853981633974483), 0, std::cos(0.7853981633974483)} *
+                                     Quat{0, 0, std::sin(phi), std::cos(phi)});
+        const bool use_segment = trial % 2 == 1;
+        const Shape& mover = use_segment ? static_cast<const Shape&>(segment) : static_cast<const Shape&>(point);
+        const Transform pm = make_transform(pose.apply(mid - reach * along), use_segment ? flat : Quat{});
+        const Vec3 motion = pose.rotation * (2 * reach * along);
+        const char* what = use_segment ? "segment over prism" : "point over prism";
+        tally.check(shape_cast(mover, pm, motion, *prism, pose, {}, kTol, kMaxIt).hit, touching, seed, trial, what,
+                    gap, 0);
+        tally.check(shape_cast(*prism, pose, {}, mover, pm, motion, kTol, kMaxIt).hit, touching, seed, trial, what,
+                    gap, 1);
+    }
+    std::printf("points and segments over a large hull's face: %d casts\n", tally.casts);
+    EXPECT_EQ(tally.wrong, 0);
+    EXPECT_EQ(tally.casts, 800);
 }
