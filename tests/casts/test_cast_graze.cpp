@@ -165,10 +165,10 @@ TEST(ShapeCastGraze, OverALargeHullsFace) {
         const Transform pm = make_transform(pose.apply(mid - reach * along), use_segment ? flat : Quat{});
         const Vec3 motion = pose.rotation * (2 * reach * along);
         const char* what = use_segment ? "segment over prism" : "point over prism";
-        tally.check(shape_cast(mover, pm, motion, *prism, pose, {}, kTol, kMaxIt).hit, touching, seed, trial, what,
-                    gap, 0);
-        tally.check(shape_cast(*prism, pose, {}, mover, pm, motion, kTol, kMaxIt).hit, touching, seed, trial, what,
-                    gap, 1);
+        tally.check(shape_cast(mover, pm, motion, *prism, pose, {}, kTol, kMaxIt).hit, touching, seed, trial, what, gap,
+                    0);
+        tally.check(shape_cast(*prism, pose, {}, mover, pm, motion, kTol, kMaxIt).hit, touching, seed, trial, what, gap,
+                    1);
     }
     std::printf("points and segments over a large hull's face: %d casts\n", tally.casts);
     EXPECT_EQ(tally.wrong, 0);
