@@ -24,16 +24,8 @@ namespace {
 constexpr double kTol = 1e-10;  // the public default
 constexpr uint32_t kMaxIt = 256;
 
-Quat random_quat(std::mt19937_64& rng) {
-    std::normal_distribution<double> g(0, 1);
-    const Quat q{g(rng), g(rng), g(rng), g(rng)};
-    return normalized(q);
-}
-
-Vec3 random_unit(std::mt19937_64& rng) {
-    std::normal_distribution<double> g(0, 1);
-    return normalized_or(Vec3{g(rng), g(rng), g(rng)}, Vec3{1, 0, 0});
-}
+using cast_test::random_quat;
+using cast_test::random_unit;
 
 struct Tally {
     int casts = 0, wrong = 0;
