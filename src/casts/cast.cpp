@@ -85,6 +85,36 @@ BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
     return b;
 }
 
+// A stop on a rounding rule (a stall, a repeated point, a failed sub-simplex) away from contact
+// is a hit at a lower bound, and the shapes may be apart there: a segment gliding 1.3e-6 over
+// another's plane (C flat, its support points tied along the plane's normal) stalled and was read
+// as touching, so was a point 4e-9 from a segment with no motion, in one argument order only, and
+// rays gliding 1e-8 over a triangle (found by a hard-input sweep). The distance at toi decides:
+// apart by more than the loop's contact gap (polytopes, general supports included: exact_gap),
+// the iteration goes on from there, searching first along the distance's axis (a plane that
+// separates the rest of the ray from C ends it as a miss). Each clip only moves x towards C, so
+// going on never skips a contact. Twice at most. cast_from(lambda0, v0, budget) runs the loop;
+// distance_at(lambda) is the distance at lambda (world frame, from C's first shape toward the
+// other), to_local its axis in the loop's frame; at_stop and at_stop_toi keep the last one.
+template <class CastFrom, class DistanceAt, class ToLocal>
+LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool polytopes, CastFrom&& cast_from,
+                                    DistanceAt&& distance_at, ToLocal&& to_local, DistanceResult& at_stop,
+                                    double& at_stop_toi) {
+    for (int resume = 0; resume < 2 && l.hit && !l.settled && l.iterations < max_iterations &&
+                         (l.termination == Termination::NoProgress || l.termination == Termination::RepeatedSupport ||
+                          l.termination == Termination::JohnsonFailed);
+         ++resume) {
+        at_stop = distance_at(l.lambda);
+        at_stop_toi = l.lambda;
+        const double gap = polytopes ? l.exact_gap : l.contact_gap;
+        if (at_stop.intersecting || !(at_stop.distance > gap) || !is_finite(at_stop.axis)) break;
+        const uint32_t used = l.iterations;
+        l = cast_from(l.lambda, to_local(at_stop.axis), max_iterations - used);
+        l.iterations += used;
+    }
+    return l;
+}
+
 }  // namespace
 
 CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
@@ -102,10 +132,21 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
         out.point = pose.apply(c.radius * b.dir);
         return out;
     }
-    const LocalCast l = with_support(c, [&](auto core) {
-        return CastLoop(SingleSupport<decltype(core)>{core}, c.radius, s, r, tolerance)
-            .run(first_direction(r, s), max_iterations);
-    });
+    auto cast_from = [&](double lambda0, Vec3 v0, uint32_t budget) {
+        return with_support(c, [&](auto core) {
+            return CastLoop(SingleSupport<decltype(core)>{core}, c.radius, s, r, tolerance, lambda0).run(v0, budget);
+        });
+    };
+    const PointShape ray_point;
+    DistanceResult at_stop{};
+    double at_stop_toi = -1;
+    const LocalCast l = go_on_past_rounding_stops(
+        cast_from(0, first_direction(r, s), max_iterations), max_iterations, polytope(shape), cast_from,
+        [&](double lambda) {
+            return gjk_distance(shape, pose, ray_point, make_transform(origin + lambda * translation, Quat{}),
+                                tolerance, max_iterations);
+        },
+        [&](Vec3 axis) { return pose.to_local_direction(axis); }, at_stop, at_stop_toi);
     CastResult out = result_head(l);
     if (!l.hit) return out;
     // Start inside: -r, or from the shape's origin toward the ray's start, or world +z.
@@ -175,31 +216,15 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         moved.translation = pose.translation + toi * translation;
         return moved;
     };
-    LocalCast l = cast_from(0, first_direction(r, t), max_iterations);
-    // A stop on a rounding rule (a stall, a repeated point, a failed sub-simplex) away from contact
-    // is a hit at a lower bound, and the shapes may be apart there: a segment gliding 1.3e-6 over
-    // another's plane (C flat, its support points tied along the plane's normal) stalled and was
-    // read as touching, so was a point 4e-9 from a segment with no motion; both argument orders
-    // disagreed (found by a hard-input sweep). The distance at toi decides: apart by more than
-    // LocalCast::contact_gap, the iteration goes on from there, searching first along the
-    // distance's axis (a plane that separates the rest of the ray from C ends it as a miss). Each
-    // clip only moves x towards C, so going on never skips a contact. Twice at most.
     DistanceResult at_stop{};
     double at_stop_toi = -1;
-    for (int resume = 0; resume < 2 && l.hit && !l.settled && l.iterations < max_iterations &&
-                         (l.termination == Termination::NoProgress || l.termination == Termination::RepeatedSupport ||
-                          l.termination == Termination::JohnsonFailed);
-         ++resume) {
-        at_stop = gjk_distance(a, at_toi(pose_a, translation_a, l.lambda), b, at_toi(pose_b, translation_b, l.lambda),
-                               tolerance, max_iterations);
-        at_stop_toi = l.lambda;
-        // General supports get a curved shape's slack in contact_gap; polytopes among them do not.
-        const double gap = polytope(a) && polytope(b) ? l.exact_gap : l.contact_gap;
-        if (at_stop.intersecting || !(at_stop.distance > gap) || !is_finite(at_stop.axis)) break;
-        const uint32_t used = l.iterations;
-        l = cast_from(l.lambda, pose_a.to_local_direction(at_stop.axis), max_iterations - used);
-        l.iterations += used;
-    }
+    const LocalCast l = go_on_past_rounding_stops(
+        cast_from(0, first_direction(r, t), max_iterations), max_iterations, polytope(a) && polytope(b), cast_from,
+        [&](double lambda) {
+            return gjk_distance(a, at_toi(pose_a, translation_a, lambda), b, at_toi(pose_b, translation_b, lambda),
+                                tolerance, max_iterations);
+        },
+        [&](Vec3 axis) { return pose_a.to_local_direction(axis); }, at_stop, at_stop_toi);
     CastResult out = result_head(l);
     if (!l.hit) return out;
     // Overlap at the start: -r, or from A's origin toward B's, or world +z.
