@@ -96,14 +96,17 @@ BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
 // going on never skips a contact. Twice at most. cast_from(lambda0, v0, budget) runs the loop;
 // distance_at(lambda) is the distance at lambda (world frame, from C's first shape toward the
 // other), to_local its axis in the loop's frame; at_stop and at_stop_toi keep the last one.
+// The loop's rules that stop at the rounding limit rather than at contact or a miss.
+bool rounding_stop(Termination t) {
+    return t == Termination::NoProgress || t == Termination::RepeatedSupport || t == Termination::JohnsonFailed;
+}
+
 template <class CastFrom, class DistanceAt, class ToLocal>
 LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool polytopes, CastFrom&& cast_from,
                                     DistanceAt&& distance_at, ToLocal&& to_local, DistanceResult& at_stop,
                                     double& at_stop_toi) {
-    for (int resume = 0; resume < 2 && l.hit && !l.settled && l.iterations < max_iterations &&
-                         (l.termination == Termination::NoProgress || l.termination == Termination::RepeatedSupport ||
-                          l.termination == Termination::JohnsonFailed);
-         ++resume) {
+    for (int resume = 0;
+         resume < 2 && l.hit && !l.settled && l.iterations < max_iterations && rounding_stop(l.termination); ++resume) {
         at_stop = distance_at(l.lambda);
         at_stop_toi = l.lambda;
         const double gap = polytopes ? l.exact_gap : l.contact_gap;
@@ -137,12 +140,12 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
             return CastLoop(SingleSupport<decltype(core)>{core}, c.radius, s, r, tolerance, lambda0).run(v0, budget);
         });
     };
-    const PointShape ray_point;
     DistanceResult at_stop{};
     double at_stop_toi = -1;
     const LocalCast l = go_on_past_rounding_stops(
         cast_from(0, first_direction(r, s), max_iterations), max_iterations, polytope(shape), cast_from,
         [&](double lambda) {
+            const PointShape ray_point;
             return gjk_distance(shape, pose, ray_point, make_transform(origin + lambda * translation, Quat{}),
                                 tolerance, max_iterations);
         },
@@ -272,9 +275,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     // the distance at toi, when it opposes the motion as a contact normal does.
     // A stop within five tolerances of contact (LocalCast::settled) keeps the cast's normal: the
     // distance would cost what the stop saved, and its normal was no better on 2048 bench casts.
-    const Termination stop = l.termination;
-    if (out.toi > 0 && !l.settled &&
-        (stop == Termination::NoProgress || stop == Termination::RepeatedSupport || stop == Termination::JohnsonFailed)) {
+    if (out.toi > 0 && !l.settled && rounding_stop(l.termination)) {
         const Transform at_a = at_toi(pose_a, translation_a, out.toi), at_b = at_toi(pose_b, translation_b, out.toi);
         const DistanceResult d =
             at_stop_toi == out.toi ? at_stop : gjk_distance(a, at_a, b, at_b, tolerance, max_iterations);

@@ -257,8 +257,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         }
     }
     if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
-    // A rounding stop within the rounding of the support points themselves is contact (see
-    // Simplex::touches_at_points_rounding; rule 2 measures against |y| alone).
+    // An estimate within the rounding of the support points themselves is contact, whichever rule
+    // stopped (see Simplex::touches_at_points_rounding; rule 2 measures against |y| alone).
     if (!intersecting && s.bits != 0 && s.touches_at_points_rounding()) {
         out.termination = Termination::NearContact;
         intersecting = true;
