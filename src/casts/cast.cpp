@@ -113,14 +113,16 @@ LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool p
         if (at_stop.intersecting || !(at_stop.distance > gap) || !is_finite(at_stop.axis)) break;
         const uint32_t used = l.iterations;
         const Vec3 axis = to_local(at_stop.axis);
+        const LocalCast before = l;
         l = cast_from(l.lambda, axis, max_iterations - used);
         l.iterations += used;
         // A resumed loop that hits without clipping would read as a start inside (normal -r): at
-        // a ray point 4e-10 beside a needle, that plane cut the needle 0.18 deep (fuzzing). Its
-        // contact plane is the distance's, which separates the ray point from C at that lambda.
+        // a ray point 4e-10 beside a needle, that plane cut the needle 0.18 deep (fuzzing). The
+        // ray point has not moved, so the last clip's plane still holds it exactly; without one,
+        // the distance's axis (on needles its plane can lie 1e-7 of the size past the ray point).
         if (l.hit && !l.clipped && l.lambda > 0) {
             l.clipped = true;
-            l.normal = axis;
+            l.normal = before.clipped ? before.normal : axis;
         }
     }
     return l;

@@ -203,12 +203,14 @@ TEST(RayCastGraze, RaysGlidingOverATrianglesPlane) {
 // point is not behind the plane of the reported normal, h(n) = max over the points of n . p (long
 // double). A stop on a rounding rule beside the needle resumes the loop from the distance at toi;
 // a resumed loop that hit without clipping reported the start-inside normal -r, whose plane cut
-// the needle 0.18 deep (fuzzing: tests/fuzz/corpus/fuzz_queries/df6dd997...).
+// the needle 0.18 deep (fuzzing: tests/fuzz/corpus/fuzz_queries/df6dd997...); the distance's axis
+// in its place lay up to 4.5e-9 past the ray point (the needles' aspect, 1e8 to 1e10, is beyond
+// the distance's accuracy range); the last clip's plane holds it to rounding.
 TEST(RayCastGraze, ThroughNeedlesNeverBehindTheNormalsPlane) {
     const uint64_t seed = 7305;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    const double kPlaneSlack = 1e-7;  // the needles' aspect is beyond the accuracy contract (1e5)
+    const double kPlaneSlack = 1e-9;  // of the length; the distance's axis as the plane reached 4.5e-9
     long double worst = 0;
     int casts = 0, bad = 0, rounding_stops = 0;
     auto check = [&](int trial, const char* what, const CastResult& r, const std::vector<Vec3>& pts, Vec3 from,

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Fuzz finding (fuzz_queries, CI's run of 2026-11-29 on a324f47; fixed in da39239): a ray from
+/* Fuzz finding (fuzz_queries, CI's run of 2026-11-29 on a324f47; fixed the same day): a ray from
  * (0.3385, 0.3385, 0.3385) along (-1, -1, -1) through a 7-point hull about 1.2 long and 1e-9 thick
  * (a needle along x). kairos_ray_cast at the default tolerance stops on a rounding rule beside the
  * needle, resumes from the distance at toi, and the resumed loop hits without clipping: its normal
