@@ -119,7 +119,7 @@ LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool p
         // A resumed loop that hits without clipping would read as a start inside (normal -r): at
         // a ray point 4e-10 beside a needle, that plane cut the needle 0.18 deep (fuzzing). The
         // ray point has not moved, so the last clip's plane still holds it exactly; without one,
-        // the distance's axis (on needles its plane can lie 1e-7 of the size past the ray point).
+        // the distance's axis (on needles its plane lay up to 3e-7 of the size past the ray point).
         if (l.hit && !l.clipped && l.lambda > 0) {
             l.clipped = true;
             l.normal = before.clipped ? before.normal : axis;

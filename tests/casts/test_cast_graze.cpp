@@ -37,6 +37,20 @@ struct Tally {
     }
 };
 
+// A point inside the hull of `pts` (a solid one): every point weighted by floor + [0, 1). A point
+// of an edge would be grazed, and rounding may miss it.
+Vec3 interior_point(const std::vector<Vec3>& pts, double floor, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    Vec3 sum{};
+    double total = 0;
+    for (const Vec3& p : pts) {
+        const double w = floor + u(rng);
+        sum = sum + w * p;
+        total += w;
+    }
+    return (1 / total) * sum;
+}
+
 }  // namespace
 
 // Two segments in parallel planes g apart (normal n = da x db), B sliding across A along the
@@ -241,15 +255,7 @@ TEST(RayCastGraze, ThroughNeedlesNeverBehindTheNormalsPlane) {
         for (int k = 0; k < 7; ++k)
             pts.push_back({-0.9 + 1.2 * u(rng), jitter * (2 * u(rng) - 1), jitter * (2 * u(rng) - 1)});
         const cast_test::ShapePtr needle = cast_test::hull_shape(pts);
-        // An interior point: every point weighted (an edge's point is grazed, and rounding may miss it).
-        Vec3 through{};
-        double total = 0;
-        for (const Vec3& p : pts) {
-            const double w = 0.05 + u(rng);
-            through = through + w * p;
-            total += w;
-        }
-        through = (1 / total) * through;
+        const Vec3 through = interior_point(pts, 0.05, rng);
         // From any side, often nearly along the needle's cross-section.
         Vec3 d = random_unit(rng);
         if (trial % 2 == 0) d.x *= 1e-3;
@@ -333,15 +339,9 @@ TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
             const Vec3 jitter{2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1};
             pts.push_back(scale * (2 * u(rng) - 1) * axis + thin * scale * jitter);
         }
-        Vec3 through{};
-        double total = 0;
-        for (const Vec3& p : pts) {
-            const double w = 0.2 + u(rng);
-            through = through + w * p;
-            total += w;
-        }
+        const Vec3 local_through = interior_point(pts, 0.2, rng);
         const Transform pose = make_transform(scale * Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}, random_quat(rng));
-        through = pose.apply((1 / total) * through);
+        const Vec3 through = pose.apply(local_through);
         const Vec3 d = random_unit(rng);
         const double reach = scale * (0.5 + 2 * u(rng)), toi_through = 0.3 + 0.7 * u(rng);
         check("seed 7306 trial", trial, *cast_test::hull_shape(pts), pose, through + reach * d,
