@@ -340,7 +340,8 @@ TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
             pts.push_back(scale * (2 * u(rng) - 1) * axis + thin * scale * jitter);
         }
         const Vec3 local_through = interior_point(pts, 0.2, rng);
-        const Transform pose = make_transform(scale * Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}, random_quat(rng));
+        const Vec3 offset = scale * Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
+        const Transform pose = make_transform(offset, random_quat(rng));
         const Vec3 through = pose.apply(local_through);
         const Vec3 d = random_unit(rng);
         const double reach = scale * (0.5 + 2 * u(rng)), toi_through = 0.3 + 0.7 * u(rng);
