@@ -85,6 +85,11 @@ BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
     return b;
 }
 
+// The loop's rules that stop at the rounding limit rather than at contact or a miss.
+bool rounding_stop(Termination t) {
+    return t == Termination::NoProgress || t == Termination::RepeatedSupport || t == Termination::JohnsonFailed;
+}
+
 // A stop on a rounding rule (a stall, a repeated point, a failed sub-simplex) away from contact
 // is a hit at a lower bound, and the shapes may be apart there: a segment gliding 1.3e-6 over
 // another's plane (C flat, its support points tied along the plane's normal) stalled and was read
@@ -96,11 +101,6 @@ BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
 // going on never skips a contact. Twice at most. cast_from(lambda0, v0, budget) runs the loop;
 // distance_at(lambda) is the distance at lambda (world frame, from C's first shape toward the
 // other), to_local its axis in the loop's frame; at_stop and at_stop_toi keep the last one.
-// The loop's rules that stop at the rounding limit rather than at contact or a miss.
-bool rounding_stop(Termination t) {
-    return t == Termination::NoProgress || t == Termination::RepeatedSupport || t == Termination::JohnsonFailed;
-}
-
 template <class CastFrom, class DistanceAt, class ToLocal>
 LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool polytopes, CastFrom&& cast_from,
                                     DistanceAt&& distance_at, ToLocal&& to_local, DistanceResult& at_stop,
@@ -113,7 +113,8 @@ LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool p
         if (at_stop.intersecting || !(at_stop.distance > gap) || !is_finite(at_stop.axis)) break;
         const uint32_t used = l.iterations;
         const Vec3 axis = to_local(at_stop.axis);
-        const LocalCast before = l;
+        const bool clipped_before = l.clipped;
+        const Vec3 normal_before = l.normal;
         l = cast_from(l.lambda, axis, max_iterations - used);
         l.iterations += used;
         // A resumed loop that hits without clipping would read as a start inside (normal -r): at
@@ -122,7 +123,7 @@ LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool p
         // the distance's axis (on needles its plane lay up to 3e-7 of the size past the ray point).
         if (l.hit && !l.clipped && l.lambda > 0) {
             l.clipped = true;
-            l.normal = before.clipped ? before.normal : axis;
+            l.normal = clipped_before ? normal_before : axis;
         }
     }
     return l;

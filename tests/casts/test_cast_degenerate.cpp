@@ -19,6 +19,7 @@
 #include <random>
 #include <vector>
 
+#include "cast_test_support.hpp"
 #include "casts/cast.hpp"
 #include "gjk_peer_shapes.hpp"
 #include "shapes/shape.hpp"
@@ -187,9 +188,7 @@ TEST(CastDegenerate, ThroughAndBesideThinShapesTheContractHolds) {
                 sign = -1;
             }
             ++t.casts;
-            if (r.termination == Termination::NoProgress || r.termination == Termination::RepeatedSupport ||
-                r.termination == Termination::JohnsonFailed)
-                ++rounding_stops;
+            if (cast_test::rounding_stop(r.termination)) ++rounding_stops;
             if (!deep) continue;
             if (!r.hit) {
                 t.fail(seed, trial, what[which], "missed, passing the inside at", toi_through, r);

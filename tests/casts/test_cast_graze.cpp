@@ -239,9 +239,7 @@ TEST(RayCastGraze, ThroughNeedlesNeverBehindTheNormalsPlane) {
                                  static_cast<long double>(normal.z) * p.z);
         const long double behind = h - (normal.x * lx + normal.y * ly + normal.z * lz);
         worst = std::fmax(worst, behind);
-        if (r.termination == Termination::NoProgress || r.termination == Termination::RepeatedSupport ||
-            r.termination == Termination::JohnsonFailed)
-            ++rounding_stops;
+        if (cast_test::rounding_stop(r.termination)) ++rounding_stops;
         const bool ok = r.hit && r.toi <= toi_through + 1e-9 && behind <= kPlaneSlack && length(normal) > 0.5;
         if (!ok && ++bad <= 10)
             ADD_FAILURE() << "seed " << seed << " trial " << trial << " " << what << ": hit " << r.hit << " toi "
@@ -296,9 +294,7 @@ TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
                      double toi_through, double size) {
         const CastResult r = ray_cast(needle, pose, from, motion, kTol, kMaxIt);
         ++rays;
-        if (r.termination == Termination::NoProgress || r.termination == Termination::RepeatedSupport ||
-            r.termination == Termination::JohnsonFailed)
-            ++rounding_stops;
+        if (cast_test::rounding_stop(r.termination)) ++rounding_stops;
         const double off = r.hit ? length(r.point - (from + r.toi * motion)) / size : INFINITY;
         worst = std::fmax(worst, off);
         if (!(r.hit && r.toi <= toi_through + 1e-9 && off <= 2 * kTol + 1e-6) && ++bad <= 10)

@@ -30,6 +30,13 @@ struct ShapeRelease {
 };
 using ShapePtr = std::unique_ptr<const kairos::Shape, ShapeRelease>;
 
+// The loop's stops at the rounding limit (a stall, a repeated support, a failed sub-simplex),
+// which the tests count to show that a case reaches the rules that act after them.
+inline bool rounding_stop(kairos::Termination t) {
+    return t == kairos::Termination::NoProgress || t == kairos::Termination::RepeatedSupport ||
+           t == kairos::Termination::JohnsonFailed;
+}
+
 inline const char* kind_name(Kind k) {
     switch (k) {
         case Kind::Point:
