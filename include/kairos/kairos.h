@@ -253,10 +253,11 @@ typedef struct kairos_cast_result {
 /* Distance, closest points and separating axis of a at pose_a and b at pose_b.
  * settings NULL means defaults; tolerance is the relative error of the distance. Near contact on
  * the rims of cylinders and cones the distance converges to about 1e-11 of the shapes' size in
- * double precision; a tighter tolerance stops there, with the distance too large, never too small.
- * Touching a cylinder (distance 0), it may stop up to 5e-8 of the size above 0 (NO_PROGRESS); a
- * rim against a box's or a hull's edge may stall (NO_PROGRESS) up to about 2e-9 of the size above
- * the distance at clear gaps too (README, "Known issues"). */
+ * double precision; a tighter tolerance stops there, with the distance too large (by rounding, at
+ * most about 2e-11 of the size too small). Touching a cylinder (distance 0), it may stop up to 5e-8
+ * of the size above 0 (NO_PROGRESS); a rim against a box's or a hull's edge may stop on a rounding
+ * rule (NO_PROGRESS, JOHNSON_FAILED) up to a few 1e-8 of the size above the distance at clear gaps
+ * too (README, "Known issues"). */
 KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pose_a,
                                    const kairos_shape* b, const kairos_pose* pose_b,
                                    const kairos_query_settings* settings, kairos_distance_result* out);
