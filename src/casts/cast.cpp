@@ -27,10 +27,12 @@ using cast_detail::SingleSupport;
 // unless it fails to oppose the motion r (a guard stop short of contact, or a coarse tolerance
 // stopping far from it; a clipping plane's normal always opposes r), or the radius is below 2^-20
 // of l.size: v's direction then carries rounding of eps * size / radius (0.95 rad on a capsule 2e4
-// long of radius 7e-300; found by fuzzing), while a clipping plane never lies past the shape.
+// long of radius 7e-300; found by fuzzing), while a clipping plane never lies past the shape;
+// or when v's plane cuts the shapes at toi by more than the tolerance allows (l.v_plane_cuts: at
+// loose tolerances v tilts by about the square root of the tolerance).
 Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, Vec3 fallback) {
     if (!l.clipped) return fallback;
-    if (margin > 0x1p-20 * l.size && l.termination != Termination::MaxIterations &&
+    if (margin > 0x1p-20 * l.size && l.termination != Termination::MaxIterations && !l.v_plane_cuts &&
         dot(l.v, l.v) > 0.25 * margin * margin && dot(l.v, l.normal) > 0 && dot(l.v, r) < 0)
         return normalized_or(l.v, fallback);
     return normalized_or(l.normal, fallback);
