@@ -54,8 +54,8 @@ double cast_scale(const Pair& pair, Vec3 a, Vec3 b, Vec3 x, Vec3 r) {
 
 struct LocalCast {
     bool hit;
-    bool clipped;  // at least one clip happened: `normal` holds its plane's normal
-    bool settled;  // a Johnson failure at a ray point already within five tolerances of C's size
+    bool clipped;               // at least one clip happened: `normal` holds its plane's normal
+    bool settled;               // a Johnson failure at a ray point already within five tolerances of C's size
     bool v_plane_cuts = false;  // CastLoop::v_plane_cuts: the final v's plane cuts C at x
     double lambda;
     Vec3 normal;            // v of the latest clip (not unit)
