@@ -256,8 +256,9 @@ typedef struct kairos_cast_result {
  * double precision; a tighter tolerance stops there, with the distance too large (by rounding, at
  * most about 2e-11 of the size too small). Touching a cylinder (distance 0), it may stop up to 5e-8
  * of the size above 0 (NO_PROGRESS); a rim against a box's or a hull's edge may stop on a rounding
- * rule (NO_PROGRESS, JOHNSON_FAILED) up to a few 1e-8 of the size above the distance at clear gaps
- * too (README, "Known issues"). */
+ * rule (NO_PROGRESS, JOHNSON_FAILED) up to about 2e-9 of the size above the distance at clear gaps
+ * too, its witness points then up to about 1e-9 of the size farther apart than the distance
+ * (README, "Known issues"). */
 KAIROS_API int32_t kairos_distance(const kairos_shape* a, const kairos_pose* pose_a,
                                    const kairos_shape* b, const kairos_pose* pose_b,
                                    const kairos_query_settings* settings, kairos_distance_result* out);

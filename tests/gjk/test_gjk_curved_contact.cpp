@@ -329,21 +329,22 @@ TEST(GjkCurvedContact, ParallelCylindersNearALineContact) {
 // ties between the edge's two ends: n in the rim's normal cone, the edge through rim + gap n along
 // e (e perpendicular to n), the box turned so that -n lies in the edge's normal cone. The plane
 // n.x = n.rim + gap then separates the two with both features on its sides: the distance is gap
-// (up to the rounding of the placement, about 1e-16 of the size). GJK's stalls here are the class
-// the README's known issues describe (too large by up to a few 1e-8 of the size, NO_PROGRESS or a
-// failed sub-simplex); the reported distance may also fall short of the gap by about 1e-11 of the
-// size, and differ from the witness points' distance by up to about 1e-10 of it (v off the
-// simplex by rounding). This test holds those bounds and the witness points to the shapes and to
+// (up to the rounding of the placement, about 1e-16 of the size). Near the tie GJK's simplex is a
+// sliver and most queries end on a rounding rule; before the recovery accepted the sliver's
+// projection at 2^-30 (gjk.cpp), they stalled up to 8e-8 of the size above the gap. The reported
+// distance may also fall short of the gap by about 1e-11 of the size, and differ from the witness
+// points' distance by up to about 1e-9 of it (v off the simplex by rounding, and coordinates
+// accepted at 2^-30). This test holds those bounds and the witness points to the shapes and to
 // the plane.
 TEST(GjkCurvedContact, RimAgainstBoxEdgeAtAKnownGap) {
     const uint32_t seed = 1129;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u01(0, 1);
     constexpr double kPi = std::numbers::pi;
-    int cases = 0, rounding_stops = 0;
+    int cases = 0, rounding_stops = 0, touching = 0;
     std::vector<double> excess;
     double worst_short = 0, worst_witness = 0, worst_plane = 0, worst_on = 0;
-    for (int i = 0; i < 2000; ++i) {
+    for (int i = 0; i < 20000; ++i) {
         const double r = 0.2 + 2 * u01(rng), hh = 0.2 + 2 * u01(rng);
         const double phi = 2 * kPi * u01(rng);
         const double zs = u01(rng) < 0.5 ? 1 : -1;
@@ -386,7 +387,13 @@ TEST(GjkCurvedContact, RimAgainstBoxEdgeAtAKnownGap) {
                 return ::testing::Message() << "seed " << seed << " case " << i << " order " << order << " gap " << gap
                                             << " termination " << static_cast<int>(d.termination);
             };
-            ASSERT_FALSE(d.intersecting) << where();
+            // Within the curved shapes' accuracy of the size (about 1e-11) of touching, a verdict of
+            // contact is rounding; beyond it, never.
+            if (d.intersecting) {
+                ++touching;
+                ASSERT_LE(gap, 1e-10 * size) << where();
+                continue;
+            }
             const double e_rel = (d.distance - gap) / size;
             excess.push_back(e_rel);
             worst_short = std::max(worst_short, -e_rel);
@@ -401,17 +408,17 @@ TEST(GjkCurvedContact, RimAgainstBoxEdgeAtAKnownGap) {
             worst_plane =
                 std::max({worst_plane, (dot(n, on_cyl) - dot(n, rim)) / size, (plane - dot(n, on_box)) / size});
             worst_witness = std::max(worst_witness, std::fabs(length(on_box - on_cyl) - d.distance) / size);
-            EXPECT_LE(e_rel, 3e-8) << where();
+            EXPECT_LE(e_rel, 3e-9) << where();
             EXPECT_GE(e_rel, -3e-11) << where();
             EXPECT_LE(std::max(out_cyl, out_box), 1e-14 * size) << where();
-            EXPECT_LE(std::fabs(length(on_box - on_cyl) - d.distance), 3e-10 * size) << where();
+            EXPECT_LE(std::fabs(length(on_box - on_cyl) - d.distance), 2e-9 * size) << where();
         }
     }
     std::sort(excess.begin(), excess.end());
     std::printf(
-        "rim/edge: %d queries, %d on rounding rules; (distance - gap) / size median %.3g max %.3g, shortfall max "
+        "rim/edge: %d queries, %d on rounding rules, %d touching; (distance - gap) / size median %.3g max %.3g, shortfall max "
         "%.3g; witness points: off their shapes %.3g, past the plane %.3g, |pa - pb| - distance %.3g (of the size)\n",
-        cases, rounding_stops, excess[excess.size() / 2], excess.back(), worst_short, worst_on, worst_plane,
+        cases, rounding_stops, touching, excess[excess.size() / 2], excess.back(), worst_short, worst_on, worst_plane,
         worst_witness);
     // The construction reaches the rounding rules it is about (most queries end on one: near the
     // tie GJK's last steps do not improve v), and some end on the tolerance rule.
