@@ -515,10 +515,13 @@ private:
     // its axis (each bounds the depth from above, exactly along its axis). A point within
     // rounding of the origin has no direction: the face's normal then.
     [[gnu::noinline]] CoreDepth finish(const Face& f, Termination t, double tolerance, CoreDepth& out) {
-        // Stopped before the polytope held the origin (rounding, or the guard): the smallest
-        // support value seen.
+        // Stopped by rounding before the polytope held the origin: the smallest support value
+        // seen. Stopped by the guard there: depth 0 at the nearest face, as with no value seen. A
+        // guard-stopped depth is a bound from below (never deeper than the shapes overlap along
+        // any axis); the smallest support value bounds it from above, and was 3.8e-6 too deep for
+        // a point 1.9e-6 inside a ball of radius 2.7e-3 at 16 support calls (fuzzing).
         const bool seen = dot(upper_n_, upper_n_) > 0;
-        if (f.d < 0 && seen) return finish_upper(t, out);
+        if (f.d < 0 && seen && t != Termination::MaxIterations) return finish_upper(t, out);
         double l[3];
         weights(f, l);
         out.point_a = combine(f, l, &Vertex::a);

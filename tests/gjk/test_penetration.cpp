@@ -1132,12 +1132,15 @@ TEST(Penetration, CylinderTouchesStayWithinTheDocumentedLimit) {
     EXPECT_GT(beyond, 0);
 }
 
-// A guard-stopped signed distance of rounded shapes whose cores are apart is a bound, and it must
-// bound from the safe side: never deeper than the shapes overlap along any direction. An ellipsoid
-// (a sphere under a diagonal map, up to 300 wide and 1e-2 as thick: GJK converges slowly on it)
-// and a ball of radius 10 to 400 whose centre lies 0.1 to 3 outside the ellipsoid; max_iterations 1
-// to 40. Before the fix the radii less a separation (a lower bound of the cores' gap) were
-// reported: 1.6e-3 too deep on the fuzz finding (an ellipsoid 306 wide, a ball of radius 325).
+// A guard-stopped signed distance is a bound, and it must bound from the safe side: never deeper
+// than the shapes overlap along any direction. An ellipsoid (a sphere under a diagonal map, up to
+// 300 wide and 1e-2 as thick: GJK converges slowly on it) and a ball of radius 10 to 400 whose
+// centre lies 0.1 to 3 outside it (the cores apart); and a small ellipsoid (1e-3 to 1e-1, nearly
+// round) with a ball's centre 1e-7 to 1e-2 of its radius inside (the cores overlap); max_iterations
+// 1 to 40. Two fuzz findings: the radii less a separation (a lower bound of the cores' gap) were
+// 1.6e-3 too deep (an ellipsoid 306 wide, a ball of radius 325); the expansion's smallest support
+// value, taken when its guard stopped it before its polytope held the origin, was 3.8e-6 too deep
+// (a point 1.9e-6 inside a ball of radius 2.7e-3).
 // Truth: the overlap along the converged answer's axis, 26 fixed directions and 64 random ones,
 // from support values written here (each overlap bounds the depth from above).
 TEST(Penetration, GuardStoppedRoundedDepthIsNeverTooDeep) {
@@ -1147,7 +1150,13 @@ TEST(Penetration, GuardStoppedRoundedDepthIsNeverTooDeep) {
     int cases = 0, guarded = 0, failures = 0;
     double worst = -INFINITY;
     for (int trial = 0; trial < 300; ++trial) {
-        const double r = 0.5 + 2 * u(rng), wide = std::pow(10.0, 1 + 1.5 * u(rng)), thin = 0.01 + u(rng);
+        // Even trials: a wide ellipsoid with the ball's centre outside it (the cores apart). Odd
+        // ones: a small, nearly round one with the centre just inside it (the cores overlap; the
+        // expansion's guard stops before its polytope holds the origin).
+        const bool inside = trial % 2 == 1;
+        const double r = inside ? std::pow(10.0, -3 + 2 * u(rng)) : 0.5 + 2 * u(rng);
+        const double wide = inside ? 1 + 0.5 * u(rng) : std::pow(10.0, 1 + 1.5 * u(rng));
+        const double thin = inside ? 1 : 0.01 + u(rng);
         const Vec3 radii = r * Vec3{thin, wide, wide};
         Mat3 lin{};
         lin.r[0] = {thin, 0, 0};
@@ -1155,12 +1164,14 @@ TEST(Penetration, GuardStoppedRoundedDepthIsNeverTooDeep) {
         lin.r[2] = {0, 0, wide};
         const ShapePtr unit_ball(new SphereShape(r));
         const ShapePtr ellipsoid(new TransformedShape(*unit_ball, lin, Vec3{}));
-        const double big = 10 + 390 * u(rng);
+        const double big = inside ? 1 + 9 * u(rng) : 10 + 390 * u(rng);
         const ShapePtr ball(new SphereShape(big));
         const Transform pose_e = make_transform(Vec3{}, random_quat(rng));
-        // The ball's centre outside the ellipsoid, off its thin side: local point (radii.x + g, y, z).
-        const double g = 0.1 + 3 * u(rng);
-        const Vec3 local{radii.x + g, (2 * u(rng) - 1) * 0.3 * radii.y, (2 * u(rng) - 1) * 0.3 * radii.z};
+        // The ball's centre off the ellipsoid's thin side, at local point (radii.x + g, y, z): g of
+        // 0.1 to 3 outside, or 1e-7 to 1e-2 of radii.x inside with y = z = 0.
+        const double g = inside ? -radii.x * std::pow(10.0, -7 + 5 * u(rng)) : 0.1 + 3 * u(rng);
+        const double ty = inside ? 0 : (2 * u(rng) - 1) * 0.3 * radii.y, tz = inside ? 0 : (2 * u(rng) - 1) * 0.3 * radii.z;
+        const Vec3 local{radii.x + g, ty, tz};
         Transform pose_b;
         pose_b.translation = pose_e.apply(local);
         auto overlap = [&](Vec3 n) {  // h_E(n) + h_B(-n), n unit
