@@ -207,3 +207,38 @@ TEST(CastRoundedLoose, NormalsPlaneHoldsTheShapesApartAtToi) {
     EXPECT_GT(hits, casts * 9 / 10);
     EXPECT_GT(ray_hits, rays * 9 / 10);
 }
+
+// A fuzz finding of the rule above: a unit ball cast against a capsule stretched to 1.3e5 by a
+// transform stops on a rounding rule; v's plane cut the shapes, the clip's normal was taken, and
+// beside it the distance at toi no longer won the comparison that also brings its point: the
+// simplex's point stayed, 0.28 outside the ball. The point must lie in both shapes at toi within
+// (2 tolerance + 1e-6) of the size (the fuzz target's slack), from support values written here.
+TEST(CastRoundedLoose, StretchedCapsuleRoundingStopKeepsThePointOnTheShapes) {
+    const ShapePtr ball(new SphereShape(1));
+    const ShapePtr capsule(new CapsuleShape(10.002746623941405, 100));
+    Mat3 lin;
+    lin.r[0] = {0.11595635919737544, 0, 0};
+    lin.r[1] = {0, 13.925841128186804, 0.081388187946859439};
+    lin.r[2] = {0, -0.00084101158262596181, 1347.6615524367273};
+    const Vec3 offset{-3.9372549019607845, -0.85932707713435574, 3.9374990463111317};
+    const ShapePtr stretched(new TransformedShape(*capsule, lin, offset));
+    const Transform pose = make_transform({-1.7098039215686276, -1.7098039215686276, -1.7098039215686276}, Quat{0, 1, 0, 0});
+    const Vec3 ta{-42.745098039215691, -42.745098039215691, -42.745098039215691};
+    const Vec3 tb{-93.527122911421372, -30.467689021133747, -30.196078431372552};
+    const CastResult r = shape_cast(*ball, pose, ta, *stretched, pose, tb, 1e-10, 256);
+    ASSERT_TRUE(r.hit);
+    const Vec3 ca = pose.translation + r.toi * ta, cb = pose.translation + r.toi * tb;
+    // The stretched capsule's support value along world n: m = R^T n, k = lin^T m.
+    auto h_b = [&](Vec3 n) {
+        const Vec3 m = mul_transpose(pose.rotation, n);
+        const Vec3 k = mul_transpose(lin, m);
+        return 10.002746623941405 * length(k) + 100 * std::fabs(k.z) + dot(m, offset) + dot(n, cb);
+    };
+    const double size = 1347.6615524367273 * 110, slack = (2 * 1e-10 + 1e-6) * size;
+    EXPECT_LE(length(r.point - ca), 1 + slack) << "the point lies outside the ball";
+    for (const Vec3 n : {Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}, Vec3{0, 0, 1}, Vec3{0, 0, -1},
+                         normalized_or(r.normal, {}), normalized_or(-1.0 * r.normal, {})})
+        EXPECT_LE(dot(n, r.point), h_b(n) + slack) << "the point lies outside the stretched capsule";
+    std::printf("stretched capsule: toi %.17g termination %d, point %.9g from the ball's centre\n", r.toi,
+                static_cast<int>(r.termination), length(r.point - ca));
+}
