@@ -29,11 +29,13 @@ using cast_detail::SingleSupport;
 // of l.size: v's direction then carries rounding of eps * size / radius (0.95 rad on a capsule 2e4
 // long of radius 7e-300; found by fuzzing), while a clipping plane never lies past the shape;
 // or when v's plane cuts the shapes at toi by more than the tolerance allows (l.v_plane_cuts: at
-// loose tolerances v tilts by about the square root of the tolerance).
-Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, Vec3 fallback) {
+// loose tolerances v tilts by about the square root of the tolerance), unless honour_plane_check
+// is false (shape_cast's rounding-stop judgement wants v's normal as the loop left it).
+Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, Vec3 fallback, bool honour_plane_check = true) {
     if (!l.clipped) return fallback;
-    if (margin > 0x1p-20 * l.size && l.termination != Termination::MaxIterations && !l.v_plane_cuts &&
-        dot(l.v, l.v) > 0.25 * margin * margin && dot(l.v, l.normal) > 0 && dot(l.v, r) < 0)
+    if (margin > 0x1p-20 * l.size && l.termination != Termination::MaxIterations &&
+        !(honour_plane_check && l.v_plane_cuts) && dot(l.v, l.v) > 0.25 * margin * margin && dot(l.v, l.normal) > 0 &&
+        dot(l.v, r) < 0)
         return normalized_or(l.v, fallback);
     return normalized_or(l.normal, fallback);
 }
@@ -309,12 +311,8 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         auto separation = [&](Vec3 n) {
             return dot(n, support(b, at_b, -n)) - dot(n, support(a, at_a, n));
         };
-        Vec3 judged = out.normal;
-        if (l.v_plane_cuts) {
-            LocalCast as_v = l;
-            as_v.v_plane_cuts = false;
-            judged = pose_a.rotation * contact_normal(as_v, margin, r, fallback);
-        }
+        const Vec3 judged =
+            l.v_plane_cuts ? pose_a.rotation * contact_normal(l, margin, r, fallback, false) : out.normal;
         if (!d.intersecting && dot(d.axis, translation_b - translation_a) < 0 &&
             separation(d.axis) > separation(judged)) {
             out.normal = d.axis;
