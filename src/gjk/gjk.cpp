@@ -17,9 +17,13 @@ namespace {
 
 using gjk_detail::Simplex;
 using gjk_detail::below_lower_bound;
+using gjk_detail::prove_by_faces;
+using gjk_detail::proven_axis;
 using gjk_detail::refine_full_coordinates;
 using gjk_detail::settle_floor;
+using gjk_detail::set_scale;
 using gjk_detail::settled;
+using gjk_detail::touching;
 using namespace kernels;
 
 // ---- The distance loop -------------------------------------------------------------------------
@@ -29,6 +33,7 @@ struct LocalDistance {
     double core;  // ||v|| of the final estimate (cores)
     Vec3 v, point_a, point_b;
     Vec3 unit;  // -v / ||v||, or zero when v is zero
+    Vec3 proven{};  // shapes without radii: the axis to report, or zero for unit (gjk_detail::proven_axis)
     bool intersecting;
     uint32_t iterations;
     Termination termination;
@@ -36,18 +41,6 @@ struct LocalDistance {
     // taken instead lies farther than the tolerance allows (see distance_query).
     bool lengthened = false;
 };
-
-// After the first support call (unscaled): the pair's scale from its support points, and those
-// points, w and the margin brought to it (exact: a power of two). The search direction needs no
-// scaling.
-template <class Pair>
-inline void set_scale(Pair& pair, Vec3& a, Vec3& b, Vec3& w, double& margin, double& margin_sq) {
-    const double sc = first_scale(pair, a, b);
-    if (sc == 1) return;
-    adopt_scale(pair, sc, a, b, margin);
-    w = a - b;
-    margin_sq = margin * margin;
-}
 
 // Recoveries from a rounding-limit stop per query (each one either shrinks ||v|| by more than
 // rounding or restarts the simplex; the iteration guard bounds them too).
@@ -61,11 +54,6 @@ constexpr int kRecoveries = 6;
 // undone. When a rounding-limit rule fires far from the proven lower bound, the nearest point of
 // the hull of the last points is found by enumeration (Simplex::nearest_in_hull), and failing
 // that the simplex restarts from the best axis; the best estimate of every run is kept.
-// v of norm^2 nv touches the origin: within rounding of it relative to the simplex's size
-// (max_norm_sq), or within the cores' margin.
-inline bool touching(double nv, double max_norm_sq, double margin_sq) {
-    return nv <= gjk_detail::kNearContact * max_norm_sq || nv <= margin_sq;
-}
 
 template <class Pair>
 LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations,
@@ -85,7 +73,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     // Kept as a fraction lower_num / lower_den (no division in the loop), with the w that gave it
     // (its norm scales the rounding of v.w).
     double lower_num = 0, lower_den = 1;
-    Vec3 lower_w{};
+    Vec3 lower_w{}, lower_v{};
     // The best estimate of a run ended by a restart (INFINITY: none yet).
     Simplex best;
     double best_vv = INFINITY;
@@ -123,6 +111,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
                 lower_num = vw * vw;
                 lower_den = vv;
                 lower_w = w;
+                lower_v = v;
             }
             // Rule 1: the lower bound vw/||v|| is within tolerance of the upper bound ||v||. With a
             // margin the distance is ||v|| - margin, so the gap is compared with that instead.
@@ -205,6 +194,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         const bool done = settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>);
         if (recoveries_left == 0 || (done && !rejected)) {
             out.termination = stop;
+            if (stop != Termination::RepeatedSupport && margin == 0)
+                prove_by_faces(pair, s, pool, vv, lower_num, lower_den, lower_w, lower_v);
             break;
         }
         --recoveries_left;
@@ -225,6 +216,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         }
         if (done) {
             out.termination = stop;
+            if (stop != Termination::RepeatedSupport && margin == 0)
+                prove_by_faces(pair, s, pool, vv, lower_num, lower_den, lower_w, lower_v);
             break;
         }
         // Restart from the best axis with an empty simplex (v stays).
@@ -290,6 +283,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     // a subnormal even at unit scale.
     const bool plain = nv > 1e-200 && nv < 1e200;
     out.unit = plain ? (-1 / std::sqrt(nv)) * s.v : normalized_or(-s.v, Vec3{});
+    if (margin == 0 && !intersecting && plain)
+        out.proven = proven_axis(pair, s, out.termination == Termination::RelativeError, lower_num, lower_den, lower_v);
     const double inv = 1 / pair.scale;
     const double m = max_abs(s.v);
     out.core = (plain ? std::sqrt(nv) : (m > 0 ? m * length(s.v / m) : 0.0)) * inv;
@@ -321,7 +316,12 @@ template <class Pair>
         --cap;
         const LocalDistance e = distance_loop(pair, margin, tolerance, cap);
         calls += e.iterations;
-        if (!e.intersecting && e.core < l.core) l = e;
+        if (!e.intersecting && e.core < l.core) {
+            // An axis proven for the longer estimate keeps its proof.
+            const Vec3 proven = dot(e.proven, e.proven) > 0 ? e.proven : l.proven;
+            l = e;
+            l.proven = proven;
+        }
         if (!e.lengthened) break;
     }
     l.termination = t;
@@ -564,7 +564,8 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     }
     r.point_a = pose_a.apply(pa);
     r.point_b = pose_a.apply(pb);
-    r.axis = world_direction(pose_a, n);
+    const bool proven = radius_a + radius_b == 0 && dot(l.proven, l.proven) > 0;
+    r.axis = world_direction(pose_a, proven ? l.proven : n);
     return r;
 }
 

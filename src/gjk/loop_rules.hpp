@@ -95,4 +95,76 @@ template <class Pair>
 constexpr double settle_floor =
     kernels::exact_support<decltype(Pair::sa)>&& kernels::exact_support<decltype(Pair::sb)> ? 0x1p-46 : 0x1p-40;
 
+// After the first support call (unscaled): the pair's scale from its support points, and those
+// points, w and the margin brought to it (exact: a power of two). The search direction needs no
+// scaling.
+template <class Pair>
+inline void set_scale(Pair& pair, Vec3& a, Vec3& b, Vec3& w, double& margin, double& margin_sq) {
+    const double sc = kernels::first_scale(pair, a, b);
+    if (sc == 1) return;
+    kernels::adopt_scale(pair, sc, a, b, margin);
+    w = a - b;
+    margin_sq = margin * margin;
+}
+
+// v of norm^2 nv touches the origin: within rounding of it relative to the simplex's size
+// (max_norm_sq), or within the cores' margin.
+inline bool touching(double nv, double max_norm_sq, double margin_sq) {
+    return nv <= kNearContact * max_norm_sq || nv <= margin_sq;
+}
+
+// The distance loop keeps its best lower bound as (v.w)^2 / ||v||^2 = num / den, with the w that
+// gave it and the direction v along which that support call proved it.
+//
+// At a rounding stop (no progress, Johnson failed) of shapes without radii whose bound is not
+// within 2^-30 of the estimate ||v||^2 = vv: the planes of the triangles among the last points
+// (pool), each checked by one support call, may prove a better one. The triangle Johnson's
+// determinants could not decide is typically on a face of A - B, with the foot on or near one
+// of its edges (a rod's corner over the centre of a plate's face: the foot on the face's
+// diagonal), and its plane is that face's.
+template <class Pair>
+void prove_by_faces(Pair& pair, const Simplex& s, unsigned pool, double vv, double& num, double& den, Vec3& lower_w,
+                    Vec3& lower_v) {
+    constexpr double keep = 1 - 0x1p-30;
+    if (!(num < (keep * keep) * vv * den)) return;
+    for (unsigned sub = 7; sub < 15u; ++sub) {
+        if (kBitCount[sub] != 3 || (sub & ~pool) != 0) continue;
+        int k[3], m = 0;
+        for (unsigned r = sub; r; r &= r - 1) k[m++] = std::countr_zero(r);
+        Vec3 n = cross(s.y[k[1]] - s.y[k[0]], s.y[k[2]] - s.y[k[0]]);
+        if (dot(n, s.y[k[0]]) < 0) n = -n;  // toward the points, away from the origin
+        n = normalized_or(n, Vec3{});
+        if (!(dot(n, n) > 0)) continue;
+        Vec3 a, b;
+        const Vec3 w = pair(-n, a, b);
+        const double h = dot(n, w);
+        if (h > 0 && h * h * den > num) num = h * h, den = 1, lower_w = w, lower_v = n;
+    }
+}
+
+// The axis to report for shapes without radii, at the end of a separated query whose final
+// estimate s.v is of plain magnitude; zero to report v's direction. That direction is the
+// distance's to the accuracy stated, but v may come from a sub-simplex whose coordinates
+// reproduce the triangle's projection, or from an earlier run nearer by rounding, and lie beside
+// the foot by that rounding, which tilts it by as much over the distance: a needle's tip 1e-6
+// over the centre of a unit box's face (the foot on the face's diagonal, the triangle a sliver of
+// two rim points 2e-6 apart and a corner) gave an edge whose direction was 4.6e-6 rad off, and
+// the face's corners fell short along it by 4.6e-6. The best lower bound's direction is proven
+// to separate the shapes by that bound: it is the axis when the bound is within 2^-30 of the
+// distance. Otherwise, unless the relative-error rule ended the loop (its v proves the distance
+// within the tolerance), v's own direction gets a support call too, and the one that proves more
+// is the axis.
+template <class Pair>
+Vec3 proven_axis(Pair& pair, const Simplex& s, bool after_rule_1, double num, double den, Vec3 lower_v) {
+    if (!(num > 0) || lower_v == s.v) return {};  // the usual end: v proved the bound itself
+    constexpr double keep = 1 - 0x1p-30;
+    const double nv = dot(s.v, s.v);
+    if (num >= (keep * keep) * nv * den) return normalized_or(-lower_v, Vec3{});
+    if (after_rule_1) return {};
+    Vec3 a, b;
+    const double hv = dot(s.v, pair(-s.v, a, b));
+    const bool v_proves_more = hv > 0 && hv * hv * den > num * nv;
+    return normalized_or(v_proves_more ? -s.v : -lower_v, Vec3{});
+}
+
 }  // namespace kairos::gjk_detail
