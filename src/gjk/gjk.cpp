@@ -15,14 +15,14 @@
 namespace kairos {
 namespace {
 
-using gjk_detail::Simplex;
 using gjk_detail::below_lower_bound;
 using gjk_detail::prove_by_faces;
 using gjk_detail::proven_axis;
 using gjk_detail::refine_full_coordinates;
-using gjk_detail::settle_floor;
 using gjk_detail::set_scale;
+using gjk_detail::settle_floor;
 using gjk_detail::settled;
+using gjk_detail::Simplex;
 using gjk_detail::touching;
 using namespace kernels;
 

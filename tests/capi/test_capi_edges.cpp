@@ -426,8 +426,9 @@ Posed place_b(const V pa, const TShape& b, const Rot& rb, V n, double g) {
 // Solid shapes whose top point (0, 0, h(+z)) is a point of theirs with the solid below it: a
 // motion through a contact there goes on into overlap (a cast's first contact is not a graze).
 bool solid_top(const TShape& s) {
-    for (const char* name : {"box", "sphere", "capsule", "cylinder", "cone", "box+sphere", "hull of two", "rod", "plate",
-                             "needle capsule", "needle cylinder", "disc", "needle cone", "flat cone", "ball", "cube"})
+    for (const char* name :
+         {"box", "sphere", "capsule", "cylinder", "cone", "box+sphere", "hull of two", "rod", "plate", "needle capsule",
+          "needle cylinder", "disc", "needle cone", "flat cone", "ball", "cube"})
         if (s.name == name) return true;
     return false;
 }
@@ -949,7 +950,6 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
     EXPECT_GT(t.separated, t.cases / 3);
 }
 
-
 // The sweep's construction on needles, plates, discs, flat cones and a sliver (needle_kinds), at
 // scales 1e-8, 1 and 1e8, with A at the origin and 1e3 and 1e6 sizes from it in a random
 // direction. Far from the origin the placement itself rounds by a few eps of the distance to it
@@ -968,57 +968,57 @@ TEST(GjkEdges, SweepNeedlesAndPlatesFarFromTheOrigin) {
     const double tilts[] = {0, 1e-9, 1e-3};
     Tally tallies[2];  // A within 1e3 sizes of the origin; 1e6 sizes away
     for (double scale : {1.0, 1e-8, 1e8})
-    for (double thin : {1e-5, 1e-6}) {
-        const std::vector<TShape> kinds = needle_kinds(scale, thin);
-        for (size_t i = 0; i < kinds.size(); ++i) {
-            for (size_t j = 0; j < kinds.size(); ++j) {
-                const double size = std::max(kinds[i].size, kinds[j].size);
-                for (double away : {0.0, 1e3, 1e6}) {
-                    for (int variant = 0; variant < 5; ++variant) {
-                        Rot ra = make_rot({0, 0, 1}, 0), rb;
-                        V n;
-                        if (variant < 3) {
-                            n = {0, 0, 1};
-                            rb = compose(make_rot(random_unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
-                        } else {
-                            ra = make_rot(random_unit(), u(rng) * M_PI);
-                            rb = make_rot(random_unit(), u(rng) * M_PI);
-                            n = random_unit();
-                        }
-                        const V c = away * size * random_unit();
-                        const Posed a{&kinds[i], ra, c};
-                        const bool deep = variant < 3 && solid_top(kinds[i]);
-                        // A first contact at a tip or a wedge 1e-6 wide moves by the placement's
-                        // rounding over that width (the ray passes beside the tip and meets its
-                        // side later): far from the origin such casts have no sharp truth.
-                        const bool cast = deep && (away == 0 || !(sharp(kinds[i]) || sharp(kinds[j])));
-                        const V pa = deep ? c + V{0, 0, kinds[i].support({0, 0, 1}).z} : a.support(n);
-                        // Points within 1e-7 of the size (the stated bound at an aspect of 1e5 is
-                        // 1e-6; seen: 3.9e-8, the common point of two needle cones crossing);
-                        // distances on curved pairs within the header's 5e-8 for a cylinder
-                        // touching (seen: 1.2e-8, a needle cylinder touching a cube, NO_PROGRESS);
-                        // v's rounding, which tilts the axis, is larger on needles' slivers (seen:
-                        // 1.7e-12 size^2 / distance, a plate 1e-9 of its size from a needle).
-                        const Allow allow{8 * 0x1p-52 * norm(c), !deep, 1e-7, 5e-8, 1e-11};
-                        for (double gr : gaps) {
-                            const double g = gr * size;
-                            const Posed b = place_b(pa, kinds[j], rb, n, g);
-                            const std::string kinds_ab = kinds[i].name + "/" + kinds[j].name;
-                            const std::string what = kinds_ab + " scale " + std::to_string(scale) + " thin " +
-                                                     std::to_string(thin) + " away " +
-                                                     std::to_string(away) + " variant " + std::to_string(variant) +
-                                                     " gap " + std::to_string(gr) + " seed " + std::to_string(seed);
-                            const V contact_b = pa + g * n;
-                            Tally& t = tallies[away == 1e6];
-                            check_pair(a, b, n, g, size, cast, &contact_b, kinds_ab, what + " (a, b)", t, allow);
-                            check_pair(b, a, -n, g, size, cast, nullptr, kinds_ab + " swapped", what + " (b, a)", t,
-                                       allow);
+        for (double thin : {1e-5, 1e-6}) {
+            const std::vector<TShape> kinds = needle_kinds(scale, thin);
+            for (size_t i = 0; i < kinds.size(); ++i) {
+                for (size_t j = 0; j < kinds.size(); ++j) {
+                    const double size = std::max(kinds[i].size, kinds[j].size);
+                    for (double away : {0.0, 1e3, 1e6}) {
+                        for (int variant = 0; variant < 5; ++variant) {
+                            Rot ra = make_rot({0, 0, 1}, 0), rb;
+                            V n;
+                            if (variant < 3) {
+                                n = {0, 0, 1};
+                                rb = compose(make_rot(random_unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
+                            } else {
+                                ra = make_rot(random_unit(), u(rng) * M_PI);
+                                rb = make_rot(random_unit(), u(rng) * M_PI);
+                                n = random_unit();
+                            }
+                            const V c = away * size * random_unit();
+                            const Posed a{&kinds[i], ra, c};
+                            const bool deep = variant < 3 && solid_top(kinds[i]);
+                            // A first contact at a tip or a wedge 1e-6 wide moves by the placement's
+                            // rounding over that width (the ray passes beside the tip and meets its
+                            // side later): far from the origin such casts have no sharp truth.
+                            const bool cast = deep && (away == 0 || !(sharp(kinds[i]) || sharp(kinds[j])));
+                            const V pa = deep ? c + V{0, 0, kinds[i].support({0, 0, 1}).z} : a.support(n);
+                            // Points within 1e-7 of the size (the stated bound at an aspect of 1e5 is
+                            // 1e-6; seen: 3.9e-8, the common point of two needle cones crossing);
+                            // distances on curved pairs within the header's 5e-8 for a cylinder
+                            // touching (seen: 1.2e-8, a needle cylinder touching a cube, NO_PROGRESS);
+                            // v's rounding, which tilts the axis, is larger on needles' slivers (seen:
+                            // 1.7e-12 size^2 / distance, a plate 1e-9 of its size from a needle).
+                            const Allow allow{8 * 0x1p-52 * norm(c), !deep, 1e-7, 5e-8, 1e-11};
+                            for (double gr : gaps) {
+                                const double g = gr * size;
+                                const Posed b = place_b(pa, kinds[j], rb, n, g);
+                                const std::string kinds_ab = kinds[i].name + "/" + kinds[j].name;
+                                const std::string what = kinds_ab + " scale " + std::to_string(scale) + " thin " +
+                                                         std::to_string(thin) + " away " + std::to_string(away) +
+                                                         " variant " + std::to_string(variant) + " gap " +
+                                                         std::to_string(gr) + " seed " + std::to_string(seed);
+                                const V contact_b = pa + g * n;
+                                Tally& t = tallies[away == 1e6];
+                                check_pair(a, b, n, g, size, cast, &contact_b, kinds_ab, what + " (a, b)", t, allow);
+                                check_pair(b, a, -n, g, size, cast, nullptr, kinds_ab + " swapped", what + " (b, a)", t,
+                                           allow);
+                            }
                         }
                     }
                 }
             }
         }
-    }
     int total = 0;
     for (int far = 0; far < 2; ++far) {
         Tally& t = tallies[far];
