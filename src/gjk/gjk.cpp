@@ -254,7 +254,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             intersecting = true;
         }
     }
-    if (!intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v))) s = best;
+    bool changed = !intersecting && (s.bits == 0 || best_vv < dot(s.v, s.v));  // see proven_axis
+    if (changed) s = best;
     // An estimate within the rounding of the support points themselves is contact, whichever rule
     // stopped (see Simplex::touches_at_points_rounding; rule 2 measures against |y| alone).
     if (!intersecting && s.bits != 0 && s.touches_at_points_rounding()) {
@@ -274,7 +275,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     // need the test.)
     if (!intersecting && gjk_detail::kBitCount[s.bits] == 3 && !s.coordinates_reproduce_v(0x1p-60)) {
         const double before = dot(s.v, s.v);
-        s.nearest_in_hull(s.bits, INFINITY, 0x1p-60);
+        changed |= s.nearest_in_hull(s.bits, INFINITY, 0x1p-60);
         out.lengthened = dot(s.v, s.v) > before * ((1 + tolerance) * (1 + tolerance));
     }
     const double nv = dot(s.v, s.v);
@@ -283,8 +284,10 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     // a subnormal even at unit scale.
     const bool plain = nv > 1e-200 && nv < 1e200;
     out.unit = plain ? (-1 / std::sqrt(nv)) * s.v : normalized_or(-s.v, Vec3{});
-    if (margin == 0 && !intersecting && plain)
-        out.proven = proven_axis(pair, s, out.termination == Termination::RelativeError, lower_num, lower_den, lower_v);
+    const Termination t = out.termination;
+    if (margin == 0 && !intersecting && plain &&
+        (changed || (t != Termination::RelativeError && t != Termination::RepeatedSupport)))
+        out.proven = proven_axis(pair, s, t == Termination::RelativeError, lower_num, lower_den, lower_v);
     const double inv = 1 / pair.scale;
     const double m = max_abs(s.v);
     out.core = (plain ? std::sqrt(nv) : (m > 0 ? m * length(s.v / m) : 0.0)) * inv;

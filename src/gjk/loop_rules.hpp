@@ -143,7 +143,10 @@ void prove_by_faces(Pair& pair, const Simplex& s, unsigned pool, double vv, doub
 }
 
 // The axis to report for shapes without radii, at the end of a separated query whose final
-// estimate s.v is of plain magnitude; zero to report v's direction. That direction is the
+// estimate s.v is of plain magnitude, after a rounding stop or when s changed after the last
+// search direction (an earlier run's estimate kept, a sub-simplex taken for its coordinates):
+// zero to report v's direction. At the usual ends v proved the bound itself (the relative-error
+// rule along v, or a repeated support point, whose plane holds v's foot). v's direction is the
 // distance's to the accuracy stated, but v may come from a sub-simplex whose coordinates
 // reproduce the triangle's projection, or from an earlier run nearer by rounding, and lie beside
 // the foot by that rounding, which tilts it by as much over the distance: a needle's tip 1e-6
