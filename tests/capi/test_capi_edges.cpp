@@ -879,6 +879,22 @@ TEST(GjkEdges, MotionCastRodTurningByNearlyPiPastABall) {
     kairos_shape_release(ball);
 }
 
+// The sweeps' gaps (fractions of the size) and their random draws: uniform numbers in [-1, 1] and
+// unit vectors (rejection from the unit ball), from one seeded generator.
+constexpr double kSweepGaps[] = {1e-2, 1e-4, 1e-6, 1e-9, 1e-12, 0, -1e-12, -1e-9, -1e-6, -1e-4, -1e-2};
+struct Draws {
+    std::mt19937_64 rng;
+    std::uniform_real_distribution<double> u{-1, 1};
+    explicit Draws(uint64_t seed) : rng(seed) {}
+    double uniform() { return u(rng); }
+    V unit() {
+        for (;;) {
+            const V d{u(rng), u(rng), u(rng)};
+            if (norm(d) > 0.1 && norm(d) <= 1) return ::unit(d);
+        }
+    }
+};
+
 // ---- The sweep -----------------------------------------------------------------------------
 
 // Every pair of kinds, both orders, at gaps from -1e-2 to 1e-2 of the size down to +-1e-12 and 0
@@ -888,15 +904,7 @@ TEST(GjkEdges, MotionCastRodTurningByNearlyPiPastABall) {
 // poses. Scales 1 and 1e-4, 1e4.
 TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
     const uint64_t seed = 12;
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1, 1);
-    auto random_unit = [&] {
-        for (;;) {
-            const V d{u(rng), u(rng), u(rng)};
-            if (norm(d) > 0.1 && norm(d) <= 1) return unit(d);
-        }
-    };
-    const double gaps[] = {1e-2, 1e-4, 1e-6, 1e-9, 1e-12, 0, -1e-12, -1e-9, -1e-6, -1e-4, -1e-2};
+    Draws draw(seed);
     const double tilts[] = {0, 1e-15, 1e-12, 1e-9, 1e-6, 1e-3};
     Tally t;
     for (double scale : {1.0, 1e-4, 1e4}) {
@@ -910,11 +918,11 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
                     if (variant < 6) {
                         // Face to face: n = +z of A, B flipped (its +z faces A) and tilted.
                         n = {0, 0, 1};
-                        rb = compose(make_rot(random_unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
+                        rb = compose(make_rot(draw.unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
                     } else {
-                        ra = make_rot(random_unit(), u(rng) * M_PI);
-                        rb = make_rot(random_unit(), u(rng) * M_PI);
-                        n = random_unit();
+                        ra = make_rot(draw.unit(), draw.uniform() * M_PI);
+                        rb = make_rot(draw.unit(), draw.uniform() * M_PI);
+                        n = draw.unit();
                     }
                     const Posed a{&kinds[i], ra, {0, 0, 0}};
                     // Face to face on a solid top: the contact point is A's top point, not its
@@ -922,7 +930,7 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
                     // grazes).
                     const bool deep = variant < 6 && solid_top(kinds[i]);
                     const V pa = deep ? V{0, 0, kinds[i].support({0, 0, 1}).z} : a.support(n);
-                    for (double gr : gaps) {
+                    for (double gr : kSweepGaps) {
                         const double g = gr * size;
                         const Posed b = place_b(pa, kinds[j], rb, n, g);
                         const std::string what = kinds[i].name + "/" + kinds[j].name + " scale " +
@@ -956,15 +964,7 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
 // (the points of contact are computed there), which every allowance gains (slack).
 TEST(GjkEdges, SweepNeedlesAndPlatesFarFromTheOrigin) {
     const uint64_t seed = 13;
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1, 1);
-    auto random_unit = [&] {
-        for (;;) {
-            const V d{u(rng), u(rng), u(rng)};
-            if (norm(d) > 0.1 && norm(d) <= 1) return unit(d);
-        }
-    };
-    const double gaps[] = {1e-2, 1e-4, 1e-6, 1e-9, 1e-12, 0, -1e-12, -1e-9, -1e-6, -1e-4, -1e-2};
+    Draws draw(seed);
     const double tilts[] = {0, 1e-9, 1e-3};
     Tally tallies[2];  // A within 1e3 sizes of the origin; 1e6 sizes away
     for (double scale : {1.0, 1e-8, 1e8})
@@ -979,13 +979,13 @@ TEST(GjkEdges, SweepNeedlesAndPlatesFarFromTheOrigin) {
                             V n;
                             if (variant < 3) {
                                 n = {0, 0, 1};
-                                rb = compose(make_rot(random_unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
+                                rb = compose(make_rot(draw.unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
                             } else {
-                                ra = make_rot(random_unit(), u(rng) * M_PI);
-                                rb = make_rot(random_unit(), u(rng) * M_PI);
-                                n = random_unit();
+                                ra = make_rot(draw.unit(), draw.uniform() * M_PI);
+                                rb = make_rot(draw.unit(), draw.uniform() * M_PI);
+                                n = draw.unit();
                             }
-                            const V c = away * size * random_unit();
+                            const V c = away * size * draw.unit();
                             const Posed a{&kinds[i], ra, c};
                             const bool deep = variant < 3 && solid_top(kinds[i]);
                             // A first contact at a tip or a wedge 1e-6 wide moves by the placement's
@@ -1000,7 +1000,7 @@ TEST(GjkEdges, SweepNeedlesAndPlatesFarFromTheOrigin) {
                             // v's rounding, which tilts the axis, is larger on needles' slivers (seen:
                             // 1.7e-12 size^2 / distance, a plate 1e-9 of its size from a needle).
                             const Allow allow{8 * 0x1p-52 * norm(c), !deep, 1e-7, 5e-8, 1e-11};
-                            for (double gr : gaps) {
+                            for (double gr : kSweepGaps) {
                                 const double g = gr * size;
                                 const Posed b = place_b(pa, kinds[j], rb, n, g);
                                 const std::string kinds_ab = kinds[i].name + "/" + kinds[j].name;
