@@ -895,6 +895,20 @@ struct Draws {
     }
 };
 
+// A sweep case's orientations: face to face (n = +z of A, B flipped so that its +z faces A, then
+// tilted by `tilt` rad about a random axis) for tilt >= 0, else random poses and direction.
+void orient(Draws& draw, double tilt, Rot& ra, Rot& rb, V& n) {
+    ra = make_rot({0, 0, 1}, 0);
+    if (tilt >= 0) {
+        n = {0, 0, 1};
+        rb = compose(make_rot(draw.unit(), tilt), make_rot({1, 0, 0}, M_PI));
+    } else {
+        ra = make_rot(draw.unit(), draw.uniform() * M_PI);
+        rb = make_rot(draw.unit(), draw.uniform() * M_PI);
+        n = draw.unit();
+    }
+}
+
 // ---- The sweep -----------------------------------------------------------------------------
 
 // Every pair of kinds, both orders, at gaps from -1e-2 to 1e-2 of the size down to +-1e-12 and 0
@@ -913,17 +927,9 @@ TEST(GjkEdges, SweepEveryPairOfKindsAtConstructedGaps) {
             for (size_t j = 0; j < kinds.size(); ++j) {
                 const double size = std::max(kinds[i].size, kinds[j].size);
                 for (int variant = 0; variant < 8; ++variant) {
-                    Rot ra = make_rot({0, 0, 1}, 0), rb;
+                    Rot ra, rb;
                     V n;
-                    if (variant < 6) {
-                        // Face to face: n = +z of A, B flipped (its +z faces A) and tilted.
-                        n = {0, 0, 1};
-                        rb = compose(make_rot(draw.unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
-                    } else {
-                        ra = make_rot(draw.unit(), draw.uniform() * M_PI);
-                        rb = make_rot(draw.unit(), draw.uniform() * M_PI);
-                        n = draw.unit();
-                    }
+                    orient(draw, variant < 6 ? tilts[variant] : -1, ra, rb, n);
                     const Posed a{&kinds[i], ra, {0, 0, 0}};
                     // Face to face on a solid top: the contact point is A's top point, not its
                     // support point (a box's support ties go to a corner, and a corner on an edge
@@ -975,16 +981,9 @@ TEST(GjkEdges, SweepNeedlesAndPlatesFarFromTheOrigin) {
                     const double size = std::max(kinds[i].size, kinds[j].size);
                     for (double away : {0.0, 1e3, 1e6}) {
                         for (int variant = 0; variant < 5; ++variant) {
-                            Rot ra = make_rot({0, 0, 1}, 0), rb;
+                            Rot ra, rb;
                             V n;
-                            if (variant < 3) {
-                                n = {0, 0, 1};
-                                rb = compose(make_rot(draw.unit(), tilts[variant]), make_rot({1, 0, 0}, M_PI));
-                            } else {
-                                ra = make_rot(draw.unit(), draw.uniform() * M_PI);
-                                rb = make_rot(draw.unit(), draw.uniform() * M_PI);
-                                n = draw.unit();
-                            }
+                            orient(draw, variant < 3 ? tilts[variant] : -1, ra, rb, n);
                             const V c = away * size * draw.unit();
                             const Posed a{&kinds[i], ra, c};
                             const bool deep = variant < 3 && solid_top(kinds[i]);
