@@ -285,8 +285,11 @@ TEST(RayCastGraze, ThroughNeedlesNeverBehindTheNormalsPlane) {
 // toi within (2 tolerance + 1e-6) of the size (the fuzz target's check). After a rounding stop the
 // final simplex can lie off the ray point though the shape does not: on a needle of aspect 9e4
 // (found by a stress run, the first case) its point was 2.4e-3, 2.3e-6 of the size, from the ray
-// point, at a toi where the shape's distance is 0. Such stops are rare on these needles (about 1
-// in 6,000 rays), so that case is kept as found.
+// point, at a toi where the shape's distance is 0. That case is kept as found; since the loop goes
+// on from the hull of its last points after a Johnson failure near the rounding limit
+// (cast_loop.hpp) it no longer stops on a rounding rule. Such stops are rare on these needles
+// (about 3 in 100,000 rays): the random rays' seed and count take in one (trial 8324, a Johnson
+// failure).
 TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
     int rays = 0, bad = 0, rounding_stops = 0;
     double worst = 0;
@@ -321,12 +324,11 @@ TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
         check("found case", 0, *cast_test::hull_shape(pts), pose,
               {-0x1.a4c6daf071acep+8, 0x1.0f5b58226dc68p+9, -0x1.11e7fc9f3d5c8p+7},
               {0x1.3cb6e6564651dp+5, -0x1.c0e4d1b870785p+7, 0x1.ab145ff0d8ebap+7}, 0.94114376640525507, 1000);
-        EXPECT_EQ(rounding_stops, 1) << "the found case no longer ends on a rounding rule";
     }
-    const uint64_t seed = 7306;
+    const uint64_t seed = 1;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    for (int trial = 0; trial < 6000; ++trial) {
+    for (int trial = 0; trial < 8400; ++trial) {
         const double thin = std::pow(10.0, -5 + 2 * u(rng)), scale = std::pow(10.0, -3 + 6 * u(rng));
         const Vec3 axis = random_unit(rng);
         std::vector<Vec3> pts;
@@ -341,11 +343,12 @@ TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
         const Vec3 through = pose.apply(local_through);
         const Vec3 d = random_unit(rng);
         const double reach = scale * (0.5 + 2 * u(rng)), toi_through = 0.3 + 0.7 * u(rng);
-        check("seed 7306 trial", trial, *cast_test::hull_shape(pts), pose, through + reach * d,
+        check("seed 1 trial", trial, *cast_test::hull_shape(pts), pose, through + reach * d,
               (-reach / toi_through) * d, toi_through, 2 * scale + reach);
     }
     std::printf("rays through moderate needles: %d, %d ended on a rounding rule, worst point %.3g of the size\n", rays,
                 rounding_stops, worst);
     EXPECT_EQ(bad, 0);
-    EXPECT_EQ(rays, 6001);
+    EXPECT_EQ(rays, 8401);
+    EXPECT_GE(rounding_stops, 1) << "no ray ends on a rounding rule: the check after one is not exercised";
 }
