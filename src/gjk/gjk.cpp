@@ -192,19 +192,14 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         const bool rejected = (stop == Termination::NoProgress || stop == Termination::JohnsonFailed) &&
                               4 * lower_num < vv * lower_den;
         const bool done = settled(vv, lower_num / lower_den, s.max_norm_sq(), margin, tolerance, settle_floor<Pair>);
-        if (recoveries_left == 0 || (done && !rejected)) {
-            out.termination = stop;
-            if (stop != Termination::RepeatedSupport && margin == 0)
-                prove_by_faces(pair, s, pool, vv, lower_num, lower_den, lower_w, lower_v);
-            break;
-        }
-        --recoveries_left;
+        const bool recover = recoveries_left > 0 && (!done || rejected);
+        if (recover) --recoveries_left;
         // The hull's point is accepted when its coordinates reproduce it within 2^-30 of the
         // simplex's size, as the final witness points are: a sliver of two rim points close
         // together against both ends of a box's edge (the edge's support tied) reproduces its
         // projection only to about 1e-11 of the size, and at 2^-40 it was refused, so the loop
         // restarted and stalled up to 8e-8 of the size above the distance.
-        if (s.nearest_in_hull(pool, vv * (1 - 64 * gjk_detail::kNoProgress), 0x1p-60)) {
+        if (recover && s.nearest_in_hull(pool, vv * (1 - 64 * gjk_detail::kNoProgress), 0x1p-60)) {
             vv = dot(s.v, s.v);
             v = s.v;
             if (vv <= gjk_detail::kNearContact * s.max_norm_sq() || vv <= margin_sq) {
@@ -214,7 +209,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             }
             continue;
         }
-        if (done) {
+        if (!recover || done) {
             out.termination = stop;
             if (stop != Termination::RepeatedSupport && margin == 0)
                 prove_by_faces(pair, s, pool, vv, lower_num, lower_den, lower_w, lower_v);

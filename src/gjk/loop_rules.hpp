@@ -114,7 +114,10 @@ inline bool touching(double nv, double max_norm_sq, double margin_sq) {
 }
 
 // The distance loop keeps its best lower bound as (v.w)^2 / ||v||^2 = num / den, with the w that
-// gave it and the direction v along which that support call proved it.
+// gave it and the direction v along which that support call proved it. A bound within 2^-30 of
+// the estimate's length needs no better proof (prove_by_faces) and its direction is the axis
+// (proven_axis): kProvenShare is that fraction.
+inline constexpr double kProvenShare = 1 - 0x1p-30;
 //
 // At a rounding stop (no progress, Johnson failed) of shapes without radii whose bound is not
 // within 2^-30 of the estimate ||v||^2 = vv: the planes of the triangles among the last points
@@ -125,8 +128,7 @@ inline bool touching(double nv, double max_norm_sq, double margin_sq) {
 template <class Pair>
 void prove_by_faces(Pair& pair, const Simplex& s, unsigned pool, double vv, double& num, double& den, Vec3& lower_w,
                     Vec3& lower_v) {
-    constexpr double keep = 1 - 0x1p-30;
-    if (!(num < (keep * keep) * vv * den)) return;
+    if (!(num < (kProvenShare * kProvenShare) * vv * den)) return;
     for (unsigned sub = 7; sub < 15u; ++sub) {
         if (kBitCount[sub] != 3 || (sub & ~pool) != 0) continue;
         int k[3], m = 0;
@@ -160,9 +162,8 @@ void prove_by_faces(Pair& pair, const Simplex& s, unsigned pool, double vv, doub
 template <class Pair>
 Vec3 proven_axis(Pair& pair, const Simplex& s, bool after_rule_1, double num, double den, Vec3 lower_v) {
     if (!(num > 0) || lower_v == s.v) return {};  // the usual end: v proved the bound itself
-    constexpr double keep = 1 - 0x1p-30;
     const double nv = dot(s.v, s.v);
-    if (num >= (keep * keep) * nv * den) return normalized_or(-lower_v, Vec3{});
+    if (num >= (kProvenShare * kProvenShare) * nv * den) return normalized_or(-lower_v, Vec3{});
     if (after_rule_1) return {};
     Vec3 a, b;
     const double hv = dot(s.v, pair(-s.v, a, b));
