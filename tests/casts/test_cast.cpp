@@ -580,7 +580,9 @@ TEST(CastCurved, RaysOntoACylinderAgainstClosedForm) {
 // to come back to the same point: a mean of 36 calls per hit, a tenth of the hits beyond 67. The
 // stop now has a floor of 2^-10 of C's size and such a failure ends the cast: the oracle still
 // finds no miss, no late answer and no point beyond its allowance (run_pair), and the calls drop
-// (this set: mean 37.5 -> 28.8, 90th percentile 68 -> 50, largest 150 -> 73).
+// (this set: mean 37.5 -> 28.8, 90th percentile 68 -> 50, largest 150 -> 73). A failure farther
+// out (||v|| up to 1e-6 of the size) goes on from the nearest point of the last points' hull
+// instead of restarting (cast_loop.hpp): mean 28.8 -> 27.3, largest 73 -> 65.
 TEST(CastCurved, RimContactsStopAtTheRoundingLimitWithoutRestarting) {
     const uint64_t seed = 2603;
     const Stats st = run_pair(seed, Kind::Cylinder, Kind::Cone, 2000, kTol);
@@ -595,8 +597,9 @@ TEST(CastCurved, RimContactsStopAtTheRoundingLimitWithoutRestarting) {
     const double p90 = calls[calls.size() * 9 / 10];
     std::printf("cylinder/cone hits at tolerance 1e-10: %zu, calls mean %.2f p90 %.0f max %.0f\n", calls.size(), mean,
                 p90, calls.back());
-    EXPECT_LT(mean, 33) << "seed " << seed;
+    EXPECT_LT(mean, 28) << "seed " << seed;
     EXPECT_LT(p90, 60) << "seed " << seed;
+    EXPECT_LT(calls.back(), 70) << "seed " << seed;
 }
 
 // A fuzz finding: a ray of subnormal length (1e-320) starting 1e10 from a capsule 5e9 wide hit it
