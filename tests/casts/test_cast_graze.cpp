@@ -343,8 +343,8 @@ TEST(RayCastGraze, HitPointsOnModerateNeedlesAreTheRayPoint) {
         const Vec3 through = pose.apply(local_through);
         const Vec3 d = random_unit(rng);
         const double reach = scale * (0.5 + 2 * u(rng)), toi_through = 0.3 + 0.7 * u(rng);
-        check("seed 1 trial", trial, *cast_test::hull_shape(pts), pose, through + reach * d,
-              (-reach / toi_through) * d, toi_through, 2 * scale + reach);
+        check("seed 1 trial", trial, *cast_test::hull_shape(pts), pose, through + reach * d, (-reach / toi_through) * d,
+              toi_through, 2 * scale + reach);
     }
     std::printf("rays through moderate needles: %d, %d ended on a rounding rule, worst point %.3g of the size\n", rays,
                 rounding_stops, worst);
