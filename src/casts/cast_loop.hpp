@@ -249,10 +249,9 @@ private:
             // limit of curved pairs (||v|| 1e-9 of the size, above the bound just tested) it
             // usually holds a point nearer x than the last estimate, while the newest point alone
             // can be a far corner of a flat part of C (restarting from it took about 20 calls back
-            // to where the iteration was, in 1 of 10 cylinder/cone hits). Each such step shrinks
-            // ||v|| by more than rounding, so it cannot cycle.
+            // to where the iteration was, in 1 of 10 cylinder/cone hits).
             if (!moved_ && prev_bits != 0 && vv_ <= kLoose * kLoose * size_sq() &&
-                sx_.nearest_in_hull(sx_.last_all, vv_ * (1 - 64 * gjk_detail::kNoProgress), 0x1p-60)) {
+                sx_.nearer_in_hull(sx_.last_all, vv_)) {
                 o = Simplex::Outcome::Reduced;
             } else {
                 // No valid sub-simplex even after the backup pass: restart from the newest point.

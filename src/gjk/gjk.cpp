@@ -199,7 +199,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         // together against both ends of a box's edge (the edge's support tied) reproduces its
         // projection only to about 1e-11 of the size, and at 2^-40 it was refused, so the loop
         // restarted and stalled up to 8e-8 of the size above the distance.
-        if (recover && s.nearest_in_hull(pool, vv * (1 - 64 * gjk_detail::kNoProgress), 0x1p-60)) {
+        if (recover && s.nearer_in_hull(pool, vv)) {
             vv = dot(s.v, s.v);
             v = s.v;
             if (vv <= gjk_detail::kNearContact * s.max_norm_sq() || vv <= margin_sq) {

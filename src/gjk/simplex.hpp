@@ -107,6 +107,12 @@ struct Simplex {
         return best_s != 0;
     }
 
+    // The recovery at a rounding stop (the distance loop, the cast loop): the hull of `all` holds
+    // a point nearer than the estimate of norm^2 vv by more than rounding (64 ulp), with
+    // coordinates that reproduce it within 2^-30 of the size, as the final witness points must.
+    // Each success shrinks the estimate by more than rounding, so repeating it cannot cycle.
+    bool nearer_in_hull(unsigned all, double vv) { return nearest_in_hull(all, vv * (1 - 64 * kNoProgress), 0x1p-60); }
+
     // The nearest point to the origin of the hull of the points in `all` (a subset of the slots
     // written), found by enumeration, not by Johnson's determinants: over every proper subset, the
     // origin projected on its affine hull with geometric coordinates, kept when the coordinates are
