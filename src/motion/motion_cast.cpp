@@ -24,6 +24,9 @@ namespace motion_detail {
 // - kLoopDistanceTolerance: relative error of the distance queries inside the loop; the final one
 //   runs at the caller's tolerance when that is finer.
 inline constexpr double kWindow = 1.0;
+// Chord trials of the second-order advancement after its first span (see advancement), measured
+// like kWindow: one left steps a fine search over spans would have saved, a third saved almost none.
+inline constexpr int kChordTrials = 2;
 // A cast that has not settled by then is read as touching (halve the window): fattened shapes
 // that overlap make GJK crawl over the disk's flat, coplanar support points.
 inline constexpr uint32_t kMaxCastIterations = 64;
@@ -268,7 +271,12 @@ private:
     //     4096 steps). Over a span the separation along n is at least the smaller end value of
     //     the (linear) centre term minus each body's support bound over the span
     //     (Body::support_bound), which costs a support per turning body and proves a span about
-    //     sqrt(distance) long. A few spans are tried, longest first.
+    //     sqrt(distance) long. That bound L(s) over a span s is concave in s (a minimum of linear
+    //     centre terms less convex support terms), so the chord between a proven span and a failed
+    //     one crosses delta no later than L does: its root is a candidate that usually proves, and
+    //     each trial is checked (L > delta) whatever the shape of L. Two chords from (0, span0)
+    //     come close to the longest span the bound proves (a ladder of spans a factor 4 apart,
+    //     longest first, stopped well short of it and took more trials).
     double advancement() const {
         const Vec3 n = dist_.axis;
         const Vec3 sa = pa_.rotation * support(a_, pa_.to_local_direction(n));
@@ -287,11 +295,30 @@ private:
             double span = 1 - t0_;
             const double curvature = body_a_.rate() * ma_.angle() + body_b_.rate() * mb_.angle();
             if (curvature > 0) span = std::fmin(span, std::fmax(4 * h, std::sqrt(2 * sep / curvature)));
-            for (int trial = 0; trial < 6 && span > h; ++trial, span *= 0.25) {
-                const double centre = std::fmin(dot(n, c0), dot(n, c0 + span * linear_rel_));
-                const double lower = centre - body_a_.support_bound(n, pa_, span, sa) -
-                                     body_b_.support_bound(-n, pb_, span, sb) - kRounding * size_;
-                if (lower > delta_) return span;
+            if (span > h) {
+                auto lower = [&](double s) {
+                    const double centre = std::fmin(dot(n, c0), dot(n, c0 + s * linear_rel_));
+                    return centre - body_a_.support_bound(n, pa_, s, sa) - body_b_.support_bound(-n, pb_, s, sb) -
+                           kRounding * size_;
+                };
+                // [lo, hi]: lo proven (L(lo) > delta, or lo = 0), hi not. The comparisons fail on NaN.
+                double lo = 0, lower_lo = lower(0), hi = span, lower_hi = lower(span);
+                if (lower_hi > delta_) return span;
+                for (int trial = 0; trial < kChordTrials; ++trial) {
+                    // A candidate no longer than h would prove nothing new (far from contact, where
+                    // the first-order bound wins, that ends the trials at once).
+                    const double s = lo + (hi - lo) * ((lower_lo - delta_) / (lower_lo - lower_hi));
+                    if (!(s > lo && s > h && s < hi)) break;
+                    const double l = lower(s);
+                    if (l > delta_) {
+                        lo = s;
+                        lower_lo = l;
+                    } else {
+                        hi = s;
+                        lower_hi = l;
+                    }
+                }
+                if (lo > h) return lo;
             }
         }
         return h;
