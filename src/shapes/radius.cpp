@@ -57,13 +57,16 @@ double extreme_radius(const Shape& s, Vec3 u) {
         case ShapeKind::Sphere:
             return static_cast<const SphereShape&>(s).radius;
         case ShapeKind::Box: {
+            // Opposite corners lie equally far from an axis through the centre (negation is
+            // exact, so bit for bit): four corners, and one square root for the largest.
             const Vec3 h = static_cast<const BoxShape&>(s).half_extents;
             double best = 0;
-            for (int corner = 0; corner < 8; ++corner) {
-                const Vec3 c{corner & 1 ? h.x : -h.x, corner & 2 ? h.y : -h.y, corner & 4 ? h.z : -h.z};
-                best = std::max(best, distance_from_axis(c, u));
+            for (int corner = 0; corner < 4; ++corner) {
+                const Vec3 c{corner & 1 ? h.x : -h.x, corner & 2 ? h.y : -h.y, h.z};
+                const Vec3 off = c - dot(c, u) * u;
+                best = std::max(best, dot(off, off));
             }
-            return best;
+            return std::sqrt(best);
         }
         case ShapeKind::Capsule: {
             const auto& c = static_cast<const CapsuleShape&>(s);
