@@ -14,9 +14,13 @@
 namespace kairos {
 namespace {
 
-// Distance of x from the line through the origin along unit u, without cancellation trouble
-// for points near the axis: the length of the rejection x - (x.u) u.
-double distance_from_axis(Vec3 x, Vec3 u) { return length(x - dot(x, u) * u); }
+// Squared distance of x from the line through the origin along unit u, without cancellation
+// trouble for points near the axis: the squared length of the rejection x - (x.u) u. Maxima are
+// taken over it and rooted once (the square root is monotone: the same result bit for bit).
+double squared_distance_from_axis(Vec3 x, Vec3 u) {
+    const Vec3 off = x - dot(x, u) * u;
+    return dot(off, off);
+}
 
 // The larger distance from the axis of the two rim circles of radius r at heights +-h (axis
 // z). For a rim point p, |p|^2 = r^2 + h^2 and p.u = r s cos(theta - phi) +- h u_z with
@@ -63,8 +67,7 @@ double extreme_radius(const Shape& s, Vec3 u) {
             double best = 0;
             for (int corner = 0; corner < 4; ++corner) {
                 const Vec3 c{corner & 1 ? h.x : -h.x, corner & 2 ? h.y : -h.y, h.z};
-                const Vec3 off = c - dot(c, u) * u;
-                best = std::max(best, dot(off, off));
+                best = std::max(best, squared_distance_from_axis(c, u));
             }
             return std::sqrt(best);
         }
@@ -83,8 +86,8 @@ double extreme_radius(const Shape& s, Vec3 u) {
         case ShapeKind::ConvexHull: {
             double best = 0;
             for (const Vec3& v : static_cast<const ConvexHullShape&>(s).vertices)
-                best = std::max(best, distance_from_axis(v, u));
-            return best;
+                best = std::max(best, squared_distance_from_axis(v, u));
+            return std::sqrt(best);
         }
         case ShapeKind::HullOfTwo: {
             const auto& h = static_cast<const HullOfTwoShape&>(s);

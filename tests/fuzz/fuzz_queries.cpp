@@ -115,18 +115,21 @@ real pair_aspect(const Posed& a, const Posed& b) {
 }
 
 // Each shape's own aspect counts too (own_aspect, fuzz_support.hpp), cached per model for the
-// input: a needle across a disk hides in A - B's aspect.
-// A composite (a Minkowski sum, a hull of two, a transformed shape) counts each of its parts as
-// well: a needle hull summed with a ball is fat by itself, while GJK's simplices still take the
-// needle's nearly collinear support points (a signed distance 3e-5 too deep beside a unit ball,
-// the needle 1500 long and 2e-6 thick; findings/README.md).
+// input: a needle across a disk hides in A - B's aspect. So does each part of a composite (a
+// Minkowski sum, a hull of two, a transformed shape): a needle hull summed with a ball is fat by
+// itself, while GJK's simplices still take the needle's nearly collinear support points (a
+// signed distance 3e-5 too deep beside a unit ball, the needle 1500 long and 2e-6 thick;
+// findings/README.md).
 bool shape_within(const Model& m, real most) {
     static uint64_t serial = ~uint64_t(0);
     static std::vector<std::pair<const Model*, real>> cache;
     if (serial != input_serial) serial = input_serial, cache.clear();
     real aspect = -1;
     for (const auto& [model, known] : cache)
-        if (model == &m) aspect = known;
+        if (model == &m) {
+            aspect = known;
+            break;
+        }
     if (aspect < 0) {
         aspect = own_aspect(m);
         cache.emplace_back(&m, aspect);
