@@ -43,7 +43,7 @@ Vec3 read_vec3(const kairos_vec3& v, const char* function, const char* name) {
     return {v.x, v.y, v.z};
 }
 
-Vec3 read_point(const kairos_vec3& v, const char* function, const char* name) {
+Vec3 read_point_checked(const kairos_vec3& v, const char* function, const char* name) {
     const Vec3 p = read_vec3(v, function, name);
     const double c[3] = {p.x, p.y, p.z};
     static const char* const axis[3] = {"x", "y", "z"};

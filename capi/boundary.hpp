@@ -79,7 +79,15 @@ inline double require_size(double v, const char* function, const char* name, boo
 // A vector of any finite length (a direction).
 Vec3 read_vec3(const kairos_vec3& v, const char* function, const char* name);
 // A position, translation or length vector: finite, each coordinate within KAIROS_MAX_MAGNITUDE.
-Vec3 read_point(const kairos_vec3& v, const char* function, const char* name);
+// Inline: one test decides every valid point (NaN and infinities fail its comparisons); the
+// checks that name the coordinate run only on the others.
+Vec3 read_point_checked(const kairos_vec3& v, const char* function, const char* name);
+inline Vec3 read_point(const kairos_vec3& v, const char* function, const char* name) {
+    if (std::fabs(v.x) <= KAIROS_MAX_MAGNITUDE && std::fabs(v.y) <= KAIROS_MAX_MAGNITUDE &&
+        std::fabs(v.z) <= KAIROS_MAX_MAGNITUDE)
+        return {v.x, v.y, v.z};
+    return read_point_checked(v, function, name);
+}
 // A new shape whose local extent goes beyond KAIROS_MAX_MAGNITUDE (a composite of large parts)
 // is refused; `s` is released first, so the caller's reference does not leak.
 void require_extent(const Shape* s, const char* function, const char* what);

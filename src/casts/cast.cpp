@@ -31,14 +31,28 @@ using cast_detail::SingleSupport;
 // or when v's plane cuts the shapes at toi by more than the tolerance allows (l.v_plane_cuts: at
 // loose tolerances v tilts by about the square root of the tolerance), unless honour_plane_check
 // is false (shape_cast's rounding-stop judgement wants v's normal as the loop left it).
-Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, Vec3 fallback, bool honour_plane_check = true) {
-    if (!l.clipped) return fallback;
+// `fallback` is a callable, called only when needed (the start-inside normal, see StartNormal).
+template <class Fallback>
+Vec3 contact_normal(const LocalCast& l, double margin, Vec3 r, const Fallback& fallback,
+                    bool honour_plane_check = true) {
+    if (!l.clipped) return fallback();
     if (margin > 0x1p-20 * l.size && l.termination != Termination::MaxIterations &&
         !(honour_plane_check && l.v_plane_cuts) && dot(l.v, l.v) > 0.25 * margin * margin && dot(l.v, l.normal) > 0 &&
         dot(l.v, r) < 0)
-        return normalized_or(l.v, fallback);
-    return normalized_or(l.normal, fallback);
+        return normalized_or_else(l.v, fallback);
+    return normalized_or_else(l.normal, fallback);
 }
+
+// The normal of a start inside, in the loop's frame: against the motion (-r), or from the first
+// shape's origin toward the other's (or the ray's start), or world +z. A callable: the hits
+// that need it are rare, and each choice costs a normalisation.
+struct StartNormal {
+    Vec3 r, toward;
+    const Transform* pose;
+    Vec3 operator()() const {
+        return normalized_or_else(-r, [&] { return normalized_or(toward, pose->to_local_direction({0, 0, 1})); });
+    }
+};
 
 // A first search direction: x - c for some c of C. Against the ray (-r) the first support is C's
 // point nearest the ray's start along r, whose plane is usually the first clip.
@@ -67,7 +81,7 @@ struct BallHit {
     CastResult head;
     Vec3 normal, dir;
 };
-BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
+BallHit ball_cast(Vec3 s, Vec3 r, double radius, const StartNormal& fallback) {
     BallHit b;
     b.head.iterations = 1;
     const closed_form::BallEntry e = closed_form::ball_entry(s, r, radius);
@@ -80,11 +94,11 @@ BallHit ball_cast(Vec3 s, Vec3 r, double radius, Vec3 fallback) {
     b.head.termination = Termination::Hit;
     b.head.toi = lambda;
     if (lambda > 0) {
-        b.normal = normalized_or(e.offset, fallback);
+        b.normal = normalized_or_else(e.offset, fallback);
         b.dir = b.normal;
     } else {  // overlapping at the start: the GJK loop's normal, the contact toward the start
-        b.normal = fallback;
-        b.dir = normalized_or(s, fallback);
+        b.normal = fallback();
+        b.dir = normalized_or(s, b.normal);
     }
     return b;
 }
@@ -142,8 +156,7 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
     const Vec3 r = pose.to_local_direction(translation);
     const CoreOf c = classify(shape);
     if (c.core == Core::Point) {
-        const Vec3 fallback = normalized_or(-r, normalized_or(s, pose.to_local_direction({0, 0, 1})));
-        const BallHit b = ball_cast(s, r, c.radius, fallback);
+        const BallHit b = ball_cast(s, r, c.radius, StartNormal{r, s, &pose});
         CastResult out = b.head;
         if (!out.hit) return out;
         out.normal = pose.rotation * b.normal;
@@ -167,9 +180,7 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
         [&](Vec3 axis) { return pose.to_local_direction(axis); }, at_stop, at_stop_toi);
     CastResult out = result_head(l);
     if (!l.hit) return out;
-    // Start inside: -r, or from the shape's origin toward the ray's start, or world +z.
-    const Vec3 fallback = normalized_or(-r, normalized_or(s, pose.to_local_direction({0, 0, 1})));
-    Vec3 n = contact_normal(l, c.radius, r, fallback);
+    Vec3 n = contact_normal(l, c.radius, r, StartNormal{r, s, &pose});
     // Point on the surface: the core's closest point pushed out by the radius along v.
     Vec3 p = l.point_a;
     if (c.radius > 0) p += c.radius * normalized_or(l.v, n);
@@ -215,8 +226,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     const double margin = ca.radius + cb.radius;
     if (ca.core == Core::Point && cb.core == Core::Point) {
         // B's centre relative to A's moves from t along r: a ray against a ball of both radii.
-        const Vec3 fallback = normalized_or(-r, normalized_or(t, pose_a.to_local_direction({0, 0, 1})));
-        const BallHit h = ball_cast(t, r, margin, fallback);
+        const BallHit h = ball_cast(t, r, margin, StartNormal{r, t, &pose_a});
         CastResult out = h.head;
         if (!out.hit) return out;
         // The contact point: each centre at toi pushed out by its radius toward the other; the two
@@ -253,8 +263,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         [&](Vec3 axis) { return pose_a.to_local_direction(axis); }, at_stop, at_stop_toi);
     CastResult out = result_head(l);
     if (!l.hit) return out;
-    // Overlap at the start: -r, or from A's origin toward B's, or world +z.
-    const Vec3 fallback = normalized_or(-r, normalized_or(t, pose_a.to_local_direction({0, 0, 1})));
+    const StartNormal fallback{r, t, &pose_a};
     const Vec3 n = contact_normal(l, margin, r, fallback);
     // Contact point: the cores' barycentric points pushed out by their radii along v (from A toward
     // B), each moved to its place at toi; they agree within the tolerance, the midpoint is taken.

@@ -44,16 +44,22 @@ inline Vec3 cwise_min(Vec3 a, Vec3 b) { return {min_of(a.x, b.x), min_of(a.y, b.
 inline Vec3 cwise_max(Vec3 a, Vec3 b) { return {max_of(a.x, b.x), max_of(a.y, b.y), max_of(a.z, b.z)}; }
 
 // Unit vector along a, computed without overflow or underflow (scaled by the largest component
-// first). A zero vector gives `fallback`.
-inline Vec3 normalized_or(Vec3 a, Vec3 fallback) {
+// first). A zero vector gives fallback(), called only then (a fallback that is itself a
+// normalisation costs six divisions and a square root).
+template <class Fallback>
+inline Vec3 normalized_or_else(Vec3 a, Fallback&& fallback) {
     // Plain comparisons, not max_abs (curved supports normalise on every call): a NaN component
     // gives NaN or the fallback, never a number.
     const double ax = std::fabs(a.x), ay = std::fabs(a.y), az = std::fabs(a.z);
     const double mxy = ax > ay ? ax : ay;
     const double m = az > mxy ? az : mxy;
-    if (!(m > 0)) return fallback;  // also catches NaN
+    if (!(m > 0)) return fallback();  // also catches NaN
     const Vec3 s = a / m;
     return s / length(s);
+}
+// The same with a fallback already at hand.
+inline Vec3 normalized_or(Vec3 a, Vec3 fallback) {
+    return normalized_or_else(a, [&] { return fallback; });
 }
 
 // normalized_or({x, y, 0}, {}) bit for bit, for supports that normalise only a radial part
