@@ -10,12 +10,10 @@
 #include <cstddef>
 #include <type_traits>
 
-#if defined(__SSE2__) && defined(__x86_64__)
-#include <emmintrin.h>
-#endif
 
 #include "math/math.hpp"
 #include "shapes/shape.hpp"
+#include "shapes/small_hull.hpp"
 
 namespace kairos::kernels {
 
@@ -30,57 +28,13 @@ struct BoxSupport {
     Vec3 h;
     Vec3 operator()(Vec3 d) const { return {toward(d.x, h.x), toward(d.y, h.y), toward(d.z, h.z)}; }
 };
-// Brute force over a small hull's vertices. Two interleaved running maxima and selects instead of
-// branches: the winner changes unpredictably, and a mispredicted branch per vertex cost more than
-// the dot product. Ties go to the lower index within each half-stream, then to the even one.
-// On x86-64 (SSE2 is part of it) the two streams are the two lanes of one register: odd index in
-// lane 0, even in lane 1, the same products and sums in the same order, so the same vertex wins as
-// in the scalar form (kept for other targets).
+// Brute force over a small hull's vertices, structure-of-arrays (shapes/small_hull.hpp: the
+// lowest index among the best, the same vertex on every instruction set).
 struct SmallHullSupport {
     const Vec3* v;
+    const double* xyz;
     size_t n;
-    Vec3 operator()(Vec3 d) const {
-        size_t best0 = 0, best1 = 0;
-        double max0 = dot(d, v[0]), max1 = -INFINITY;
-        size_t i = 1;
-#if defined(__SSE2__) && defined(__x86_64__)
-        static_assert(sizeof(Vec3) == 3 * sizeof(double), "vertices are read as packed doubles");
-        const __m128d dx = _mm_set1_pd(d.x), dy = _mm_set1_pd(d.y), dz = _mm_set1_pd(d.z);
-        __m128d top = _mm_set_pd(max0, max1);  // lane 0 odd stream, lane 1 even
-        __m128i best = _mm_setzero_si128();
-        __m128i index = _mm_set_epi64x(2, 1);
-        const __m128i step = _mm_set_epi64x(2, 2);
-        for (; i + 1 < n; i += 2) {
-            // v[i] and v[i + 1]: six doubles in a row, read as three pairs and regrouped by axis.
-            const double* p = &v[i].x;
-            const __m128d l0 = _mm_loadu_pd(p), l1 = _mm_loadu_pd(p + 2), l2 = _mm_loadu_pd(p + 4);
-            const __m128d x = _mm_shuffle_pd(l0, l1, 2), y = _mm_shuffle_pd(l0, l2, 1), z = _mm_shuffle_pd(l1, l2, 2);
-            const __m128d score = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, x), _mm_mul_pd(dy, y)), _mm_mul_pd(dz, z));
-            const __m128i higher = _mm_castpd_si128(_mm_cmpgt_pd(score, top));
-            best = _mm_or_si128(_mm_and_si128(higher, index), _mm_andnot_si128(higher, best));
-            top = _mm_max_pd(score, top);  // score > top ? score : top, as the scalar select
-            index = _mm_add_epi64(index, step);
-        }
-        max1 = _mm_cvtsd_f64(top);
-        max0 = _mm_cvtsd_f64(_mm_unpackhi_pd(top, top));
-        best1 = static_cast<size_t>(_mm_cvtsi128_si64(best));
-        best0 = static_cast<size_t>(_mm_cvtsi128_si64(_mm_unpackhi_epi64(best, best)));
-#else
-        for (; i + 1 < n; i += 2) {
-            const double s1 = dot(d, v[i]), s0 = dot(d, v[i + 1]);
-            best1 = s1 > max1 ? i : best1;
-            max1 = s1 > max1 ? s1 : max1;
-            best0 = s0 > max0 ? i + 1 : best0;
-            max0 = s0 > max0 ? s0 : max0;
-        }
-#endif
-        if (i < n) {
-            const double s1 = dot(d, v[i]);
-            best1 = s1 > max1 ? i : best1;
-            max1 = s1 > max1 ? s1 : max1;
-        }
-        return v[max1 > max0 ? best1 : best0];
-    }
+    Vec3 operator()(Vec3 d) const { return v[small_hull::best_vertex(v, xyz, n, d)]; }
 };
 // A cylinder or a cone: no switch on the kind per call (the flag is the same on every call, so
 // its branch predicts). Curved: its points are rounded, as GenericSupport's may be.
@@ -235,7 +189,8 @@ inline CoreOf classify(const Shape& s) {
             return {Core::Box, 0, &s};
         case ShapeKind::ConvexHull: {
             const auto& h = static_cast<const ConvexHullShape&>(s);
-            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold)
+            if (!h.vertices.empty() && h.vertices.size() <= ConvexHullShape::kHillClimbThreshold &&
+                h.soa.size() == 3 * small_hull::padded(h.vertices.size()))
                 return {Core::SmallHull, 0, &s};
             return {Core::Generic, 0, &s};
         }
@@ -267,7 +222,7 @@ auto with_support(const CoreOf& c, Fn&& fn) {
             return fn(BoxSupport{static_cast<const BoxShape&>(s).half_extents});
         case Core::SmallHull: {
             const auto& h = static_cast<const ConvexHullShape&>(s);
-            return fn(SmallHullSupport{h.vertices.data(), h.vertices.size()});
+            return fn(SmallHullSupport{h.vertices.data(), h.soa.data(), h.vertices.size()});
         }
         case Core::Revolution: {
             if (s.kind() == ShapeKind::Cone) {

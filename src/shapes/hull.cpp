@@ -43,6 +43,7 @@
 
 #include "shapes/quickhull.hpp"
 #include "shapes/shape.hpp"
+#include "shapes/small_hull.hpp"
 
 namespace kairos {
 
@@ -70,6 +71,7 @@ size_t best_of(const std::vector<Vec3>& vertices, size_t n, Vec3 d, double& out_
 Vec3 ConvexHullShape::support(Vec3 d) const {
     if (vertices.empty()) return {};
     double best_score = 0;
+    if (!soa.empty()) return vertices[small_hull::best_vertex(vertices.data(), soa.data(), vertices.size(), d)];
     if (neighbor_offsets.empty()) return vertices[best_of(vertices, vertices.size(), d, best_score)];
     // Steepest ascent over the edge graph: on a convex polytope a vertex with no better
     // neighbour maximises the linear function d.x globally. Scores only increase, so it stops.
@@ -485,6 +487,8 @@ ConvexHullShape* pack_hull(const Vec3* points, size_t count, const std::vector<V
             adjacent[fill[index_of[b]]++] = index_of[a];
         }
         for (size_t i = 0; i < nv; ++i) std::sort(adjacent.begin() + offsets[i], adjacent.begin() + offsets[i + 1]);
+    } else {
+        shape->soa = small_hull::layout(shape->vertices);
     }
     return shape.release();
 }

@@ -98,6 +98,9 @@ struct ConvexHullShape final : Shape {
     uint8_t dimension = 3;
     std::vector<uint32_t> neighbor_offsets;
     std::vector<uint32_t> neighbors;
+    // A hull that does not climb also keeps its vertices structure-of-arrays (small_hull::layout):
+    // its brute-force support reads them a vector at a time.
+    std::vector<double> soa;
     Vec3 support(Vec3 d) const;  // in hull.cpp
 };
 
