@@ -125,6 +125,150 @@ TEST(Magnitudes, EveryQueryAtEveryScaleIsFinite) {
     EXPECT_GT(ok, 1000);  // within the limits every query answers
 }
 
+// Scaling a whole scene (every size, position and translation) by a power of two changes no
+// rounding, so the queries must give the unit scale's answers, lengths scaled, bit for bit: an
+// absolute threshold anywhere in a loop (a constant compared with a length, a square or a volume)
+// shows up here as a difference. Eight shape kinds, every ordered pair, random sizes, poses and
+// motions; scales 2^-90 .. 2^90 (the loops keep the caller's scale while their first points lie
+// within 2^-100 .. 2^100). Beyond, down to 2^-300 and up to 2^300, the loops and the expansion
+// each rescale by their own power of two from their first points: distances and casts that do not
+// start in contact stay bit for bit; an overlap's depth (the signed distance, a cast's or a
+// motion's normal at toi 0) may take another path through the expansion (at 2^-100 a hull in a
+// ball took 15 support calls instead of 10 to the same answer), within its accuracy
+// (docs/c-api.md).
+TEST(Magnitudes, PowerOfTwoScalingGivesTheUnitScaleAnswers) {
+    const uint64_t seed = 12002;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+    auto quat = [&] {
+        const double x = u(-1, 1), y = u(-1, 1), z = u(-1, 1), w = u(-1, 1),
+                     n = std::sqrt(x * x + y * y + z * z + w * w);
+        return kairos_quat{x / n, y / n, z / n, w / n};
+    };
+    // Kind k at scale s from the parameters p (sizes first, then hull points).
+    auto make = [](int k, double s, const std::vector<double>& p) {
+        kairos_shape* out = nullptr;
+        Owned part1, part2;
+        switch (k) {
+            case 0:
+                kairos_shape_sphere(s * p[0], &out);
+                break;
+            case 1:
+                kairos_shape_box({s * p[0], s * p[1], s * p[2]}, &out);
+                break;
+            case 2:
+                kairos_shape_capsule(s * p[0], s * p[1], &out);
+                break;
+            case 3:
+                kairos_shape_cylinder(s * p[0], s * p[1], &out);
+                break;
+            case 4:
+                kairos_shape_cone(s * p[0], s * p[1], &out);
+                break;
+            case 5: {
+                std::vector<kairos_vec3> v;
+                for (int i = 0; i < 12; ++i) v.push_back({s * p[4 + 3 * i], s * p[5 + 3 * i], s * p[6 + 3 * i]});
+                kairos_shape_convex_hull(v.data(), v.size(), &out);
+                break;
+            }
+            case 6:
+                kairos_shape_box({s * p[0], s * p[1], s * p[2]}, &part1.s);
+                kairos_shape_sphere(s * p[3], &part2.s);
+                kairos_shape_minkowski_sum(part1.s, part2.s, &out);
+                break;
+            default:
+                kairos_shape_segment(s * p[0], &out);
+        }
+        return out;
+    };
+    auto scaled = [](double s, kairos_vec3 v) { return kairos_vec3{s * v.x, s * v.y, s * v.z}; };
+    auto same3 = [](kairos_vec3 a, kairos_vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+    auto same_distance = [&](const kairos_distance_result& r, const kairos_distance_result& r0, double s) {
+        return r.distance == s * r0.distance && same3(r.point_a, scaled(s, r0.point_a)) &&
+               same3(r.point_b, scaled(s, r0.point_b)) && same3(r.axis, r0.axis) && r.intersecting == r0.intersecting &&
+               r.iterations == r0.iterations && r.termination == r0.termination;
+    };
+    auto same_cast = [&](const kairos_cast_result& r, const kairos_cast_result& r0, double s) {
+        return r.hit == r0.hit && r.toi == r0.toi && same3(r.point, scaled(s, r0.point)) &&
+               same3(r.normal, r0.normal) && r.iterations == r0.iterations && r.termination == r0.termination;
+    };
+    const int exponents[] = {-90, -61, -7, 9, 60, 90, -300, -200, 200, 300};
+    int compared = 0, different = 0, overlaps = 0, hits = 0, motion_hits = 0, off_accuracy = 0;
+    for (int trial = 0; trial < 640; ++trial) {
+        const int ka = trial % 8, kb = (trial / 8) % 8;
+        std::vector<double> pa(40), pb(40);
+        for (int i = 0; i < 40; ++i) pa[i] = i < 4 ? u(0.2, 1.5) : u(-1, 1), pb[i] = i < 4 ? u(0.2, 1.5) : u(-1, 1);
+        const kairos_pose A{{u(-1, 1), u(-1, 1), u(-1, 1)}, quat()}, B{{u(-3, 3), u(-3, 3), u(-3, 3)}, quat()};
+        const kairos_vec3 ta{u(-1, 1), u(-1, 1), u(-1, 1)};
+        const kairos_vec3 tb{-B.position.x + u(-1, 1), -B.position.y + u(-1, 1), -B.position.z + u(-1, 1)};
+        const kairos_quat turn = quat();
+        kairos_distance_result d0{}, sd0{};
+        kairos_cast_result c0{}, m0{}, ray0{};
+        for (int k = -1; k < 10; ++k) {
+            const int e = k < 0 ? 0 : exponents[k];
+            const double s = std::ldexp(1.0, e);
+            Owned a, b;
+            a.s = make(ka, s, pa);
+            b.s = make(kb, s, pb);
+            ASSERT_TRUE(a.s != nullptr && b.s != nullptr) << kairos_last_error();
+            const kairos_pose As{scaled(s, A.position), A.orientation}, Bs{scaled(s, B.position), B.orientation};
+            const kairos_vec3 tas = scaled(s, ta), tbs = scaled(s, tb);
+            const kairos_motion ma{As, {{As.position.x + tas.x, As.position.y + tas.y, As.position.z + tas.z}, turn}};
+            const kairos_motion mb{
+                Bs, {{Bs.position.x + tbs.x, Bs.position.y + tbs.y, Bs.position.z + tbs.z}, Bs.orientation}};
+            kairos_distance_result d{}, sd{};
+            kairos_cast_result c{}, m{}, ray{};
+            ASSERT_EQ(kairos_distance(a.s, &As, b.s, &Bs, nullptr, &d), KAIROS_OK) << kairos_last_error();
+            ASSERT_EQ(kairos_signed_distance(a.s, &As, b.s, &Bs, nullptr, &sd), KAIROS_OK) << kairos_last_error();
+            ASSERT_EQ(kairos_shape_cast(a.s, &As, tas, b.s, &Bs, tbs, nullptr, &c), KAIROS_OK) << kairos_last_error();
+            ASSERT_EQ(kairos_motion_cast(a.s, &ma, b.s, &mb, nullptr, &m), KAIROS_OK) << kairos_last_error();
+            ASSERT_EQ(kairos_ray_cast(b.s, &Bs, As.position, tas, nullptr, &ray), KAIROS_OK) << kairos_last_error();
+            if (k < 0) {
+                d0 = d, sd0 = sd, c0 = c, m0 = m, ray0 = ray;
+                overlaps += d.intersecting;
+                hits += c.hit;
+                motion_hits += m.hit;
+                continue;
+            }
+            ++compared;
+            const bool exact_range = std::abs(e) <= 90;
+            const bool overlap_path = d0.intersecting != 0;
+            bool ok = same_distance(d, d0, s) && same_cast(ray, ray0, s);
+            if (exact_range || !overlap_path)
+                ok = ok && same_distance(sd, sd0, s) && same_cast(c, c0, s) && same_cast(m, m0, s);
+            if (!exact_range && overlap_path) {
+                // Another path through the expansion: the same verdicts and times, the depth within
+                // twice the tolerance of the unit scale's.
+                ok = ok && c.hit == c0.hit && c.toi == c0.toi && m.hit == m0.hit && m.toi == m0.toi;
+                const bool close = std::fabs(sd.distance / s - sd0.distance) <= 2e-10 * std::fabs(sd0.distance) + 1e-15;
+                off_accuracy += !close;
+                ok = ok && close;
+            }
+            if (!ok && ++different <= 10)
+                ADD_FAILURE() << "kinds " << ka << "/" << kb << " trial " << trial << " scale 2^" << e << ": distance "
+                              << d.distance / s << " vs " << d0.distance << ", signed " << sd.distance / s << " vs "
+                              << sd0.distance << ", cast toi " << c.toi << " vs " << c0.toi << " normal.x "
+                              << c.normal.x << " vs " << c0.normal.x << ", motion toi " << m.toi << " vs " << m0.toi
+                              << " (same: distance " << same_distance(d, d0, s) << ", ray " << same_cast(ray, ray0, s)
+                              << ", signed " << same_distance(sd, sd0, s) << ", cast " << same_cast(c, c0, s)
+                              << ", motion " << same_cast(m, m0, s) << ")";
+        }
+    }
+    std::printf(
+        "power-of-two scaling: %d comparisons, %d differing (%d overlap depths beyond accuracy); at unit scale "
+        "%d of 640 overlapping, %d cast hits, %d motion hits\n",
+        compared, different, off_accuracy, overlaps, hits, motion_hits);
+    EXPECT_EQ(different, 0);
+    // Both paths are exercised: overlaps (the expansion) and separated pairs, hits and misses.
+    EXPECT_GT(overlaps, 30);
+    EXPECT_LT(overlaps, 400);
+    EXPECT_GT(hits, 150);
+    EXPECT_LT(hits, 620);
+    EXPECT_GT(motion_hits, 150);
+    EXPECT_LT(motion_hits, 620);
+}
+
 // Regression (fuzzer): a triangle 4e-4 thick moved 1e15 away, at a slightly turned pose: the z
 // range came back with min > max (two supports, each rounded at 1e15 with ulp 0.125).
 TEST(Magnitudes, BoundsOfAFlatShapeFarAwayAreOrdered) {
