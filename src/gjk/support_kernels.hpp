@@ -10,7 +10,6 @@
 #include <cstddef>
 #include <type_traits>
 
-
 #include "math/math.hpp"
 #include "shapes/shape.hpp"
 #include "shapes/small_hull.hpp"

@@ -32,8 +32,8 @@ namespace {
 // lowest index among all the vertices with the top score, whatever the number of lanes. Masks,
 // not branches: the final merges decided by branches mispredicted on most calls.
 inline void merge(__m128d& top, __m128d& at, __m128d other_top, __m128d other_at) {
-    const __m128d take = _mm_or_pd(_mm_cmpgt_pd(other_top, top),
-                                   _mm_and_pd(_mm_cmpeq_pd(other_top, top), _mm_cmplt_pd(other_at, at)));
+    const __m128d take =
+        _mm_or_pd(_mm_cmpgt_pd(other_top, top), _mm_and_pd(_mm_cmpeq_pd(other_top, top), _mm_cmplt_pd(other_at, at)));
     top = _mm_or_pd(_mm_and_pd(take, other_top), _mm_andnot_pd(take, top));
     at = _mm_or_pd(_mm_and_pd(take, other_at), _mm_andnot_pd(take, at));
 }
@@ -61,9 +61,9 @@ __attribute__((target("avx2"))) size_t best_vertex_avx2(const double* xyz, size_
         const __m256d s0 = _mm256_add_pd(
             _mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(xs + i)), _mm256_mul_pd(dy, _mm256_loadu_pd(ys + i))),
             _mm256_mul_pd(dz, _mm256_loadu_pd(zs + i)));
-        const __m256d s1 = _mm256_add_pd(
-            _mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(xs + i + 4)), _mm256_mul_pd(dy, _mm256_loadu_pd(ys + i + 4))),
-            _mm256_mul_pd(dz, _mm256_loadu_pd(zs + i + 4)));
+        const __m256d s1 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(xs + i + 4)),
+                                                       _mm256_mul_pd(dy, _mm256_loadu_pd(ys + i + 4))),
+                                         _mm256_mul_pd(dz, _mm256_loadu_pd(zs + i + 4)));
         at0 = _mm256_blendv_pd(at0, i0, _mm256_cmp_pd(s0, top0, _CMP_GT_OQ));
         at1 = _mm256_blendv_pd(at1, i1, _mm256_cmp_pd(s1, top1, _CMP_GT_OQ));
         top0 = _mm256_max_pd(s0, top0);
@@ -78,9 +78,9 @@ __attribute__((target("avx2"))) size_t best_vertex_avx2(const double* xyz, size_
         at0 = _mm256_blendv_pd(at0, i0, _mm256_cmp_pd(s0, top0, _CMP_GT_OQ));
         top0 = _mm256_max_pd(s0, top0);
     }
-    const __m256d take = _mm256_or_pd(
-        _mm256_cmp_pd(top1, top0, _CMP_GT_OQ),
-        _mm256_and_pd(_mm256_cmp_pd(top1, top0, _CMP_EQ_OQ), _mm256_cmp_pd(at1, at0, _CMP_LT_OQ)));
+    const __m256d take =
+        _mm256_or_pd(_mm256_cmp_pd(top1, top0, _CMP_GT_OQ),
+                     _mm256_and_pd(_mm256_cmp_pd(top1, top0, _CMP_EQ_OQ), _mm256_cmp_pd(at1, at0, _CMP_LT_OQ)));
     top0 = _mm256_blendv_pd(top0, top1, take);
     at0 = _mm256_blendv_pd(at0, at1, take);
     __m128d top = _mm256_castpd256_pd128(top0), at = _mm256_castpd256_pd128(at0);

@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 #include "gjk/support_kernels.hpp"
-#include "shapes/small_hull.hpp"
 #include "gjk_test_support.hpp"
+#include "shapes/small_hull.hpp"
 
 using namespace kairos;
 using kernels::BoxSupport;
