@@ -69,20 +69,10 @@ public:
             // The least key among the faces; resolving raises a key, so after a resolve the face
             // is still the least when its key stays at or below the runner-up's, and the
             // runner-up is the least otherwise (a new search only when that one is unresolved).
-            int f = -1;
-            for (;;) {
-                int second = -1;
-                least_two(f, second);
-                if (faces_[f].resolved) break;
-                resolve(faces_[f]);
-                const double was = key_[f];
-                key_[f] = faces_[f].d;
-                if constexpr (kRanks)
-                    if (ranking_.on()) ranking_.resolved(f, key_[f] != was, key_);
-                if (second < 0 || key_[f] <= key_[second]) break;
-                f = second;
-                if (faces_[f].resolved) break;
-            }
+            int f = least_resolved(false);
+            // A least listed key above upper is rounding (docs/algorithms.md §2b): the faces at
+            // the depth were listed out a few ulps above it. The least over all faces then.
+            if (key_[f] > upper && (n_near_ > 0 || kRanks)) f = least_resolved(true);
             const Face& face = faces_[f];  // expand changes no face when it fails
             if (calls_ >= budget_ || nv_ == kMaxV) return finish(face, Termination::MaxIterations, tolerance, out);
             Vertex x;
@@ -111,6 +101,30 @@ public:
     }
 
 private:
+    // The face of the least key, resolved (its key its distance): among the listed faces, or
+    // among all when `all` is set.
+    int least_resolved(bool all) {
+        const auto every = [](int j) { return j; };
+        int f = -1;
+        for (;;) {
+            int second = -1;
+            if (all)
+                least_two(nf_, every, f, second);
+            else
+                least_two(f, second);
+            if (faces_[f].resolved) break;
+            resolve(faces_[f]);
+            const double was = key_[f];
+            key_[f] = faces_[f].d;
+            if constexpr (kRanks)
+                if (ranking_.on()) ranking_.resolved(f, key_[f] != was, key_);
+            if (second < 0 || key_[f] <= key_[second]) break;
+            f = second;
+            if (faces_[f].resolved) break;
+        }
+        return f;
+    }
+
     // The faces of the least and the second least key (second -1 with one face): among near_
     // when it is kept, else among all. Written with selects, not branches: which face holds the
     // least is data, and branches on it mispredict.
@@ -127,19 +141,7 @@ private:
     }
     template <class Index>
     [[gnu::always_inline]] void least_two(int n, Index index, int& first, int& second) const {
-        int f1 = index(0), f2 = -1;
-        double m1 = key_[f1], m2 = INFINITY;
-        for (int j = 1; j < n; ++j) {
-            const int i = index(j);
-            const double k = key_[i];
-            const bool below1 = k < m1, below2 = k < m2;
-            f2 = below1 ? f1 : (below2 ? i : f2);
-            m2 = below1 ? m1 : (below2 ? k : m2);
-            f1 = below1 ? i : f1;
-            m1 = below1 ? k : m1;
-        }
-        first = f1;
-        second = f2;
+        least_two_keys(key_, n, index, first, second);
     }
 
     // near_, kept once the polytope has kNearFrom faces: the faces whose key is at most upper

@@ -118,5 +118,24 @@ struct CoreDepth {
     bool flat = false;  // C has no interior (or a sliver's): point_a and point_b unset
 };
 
+// The least and the second least key among key[index(0 .. n - 1)] (second -1 when n is 1), by selects:
+// which face is least is data, and branches on it mispredict.
+template <class Keys, class Index>
+[[gnu::always_inline]] inline void least_two_keys(const Keys& key, int n, Index index, int& first, int& second) {
+    int f1 = index(0), f2 = -1;
+    double m1 = key[f1], m2 = INFINITY;
+    for (int j = 1; j < n; ++j) {
+        const int i = index(j);
+        const double k = key[i];
+        const bool below1 = k < m1, below2 = k < m2;
+        f2 = below1 ? f1 : (below2 ? i : f2);
+        m2 = below1 ? m1 : (below2 ? k : m2);
+        f1 = below1 ? i : f1;
+        m1 = below1 ? k : m1;
+    }
+    first = f1;
+    second = f2;
+}
+
 }  // namespace epa_detail
 }  // namespace kairos
