@@ -103,7 +103,7 @@ public:
 private:
     // The face of the least key, resolved (its key its distance): among the listed faces, or
     // among all when `all` is set.
-    int least_resolved(bool all) {
+    [[gnu::always_inline]] int least_resolved(bool all) {
         const auto every = [](int j) { return j; };
         int f = -1;
         for (;;) {
