@@ -78,6 +78,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     Simplex best;
     double best_vv = INFINITY;
     int recoveries_left = kRecoveries;
+    double repeat_vw = INFINITY;  // v.w of the last repeated support point (rule 5)
 
     LocalDistance out{};
     out.termination = Termination::MaxIterations;
@@ -124,6 +125,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             if (s.contains(w)) {
                 stop = Termination::RepeatedSupport;
                 pool = s.last_all;
+                repeat_vw = vw;
             }
         }
         if (stop == Termination::None) {
@@ -211,7 +213,9 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         }
         if (!recover || done) {
             out.termination = stop;
-            if (stop != Termination::RepeatedSupport && margin == 0)
+            // A repeated point proves ||v|| along v unless Johnson chose a triangle by rounding (a tip
+            // over a box face's diagonal: v tilted, the repeated corner short by 6e-8 of the size).
+            if ((stop != Termination::RepeatedSupport || repeat_vw < gjk_detail::kProvenShare * vv) && margin == 0)
                 prove_by_faces(pair, s, pool, vv, lower_num, lower_den, lower_w, lower_v);
             break;
         }
@@ -281,7 +285,8 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     out.unit = plain ? (-1 / std::sqrt(nv)) * s.v : normalized_or(-s.v, Vec3{});
     const Termination t = out.termination;
     if (margin == 0 && !intersecting && plain &&
-        (changed || (t != Termination::RelativeError && t != Termination::RepeatedSupport)))
+        (changed || (t != Termination::RelativeError && t != Termination::RepeatedSupport) ||
+         (t == Termination::RepeatedSupport && repeat_vw < gjk_detail::kProvenShare * vv)))
         out.proven = proven_axis(pair, s, t == Termination::RelativeError, lower_num, lower_den, lower_v);
     const double inv = 1 / pair.scale;
     const double m = max_abs(s.v);
