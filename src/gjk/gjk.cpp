@@ -78,7 +78,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     Simplex best;
     double best_vv = INFINITY;
     int recoveries_left = kRecoveries;
-    double repeat_vw = INFINITY;  // v.w of the last repeated support point (rule 5)
+    bool repeat_short = false;  // rule 5's point short of proving ||v|| along v (see the stop)
 
     LocalDistance out{};
     out.termination = Termination::MaxIterations;
@@ -125,7 +125,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             if (s.contains(w)) {
                 stop = Termination::RepeatedSupport;
                 pool = s.last_all;
-                repeat_vw = vw;
+                repeat_short = vw < gjk_detail::kProvenShare * vv;
             }
         }
         if (stop == Termination::None) {
@@ -215,7 +215,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
             out.termination = stop;
             // A repeated point proves ||v|| along v unless Johnson chose a triangle by rounding (a tip
             // over a box face's diagonal: v tilted, the repeated corner short by 6e-8 of the size).
-            if ((stop != Termination::RepeatedSupport || repeat_vw < gjk_detail::kProvenShare * vv) && margin == 0)
+            if ((stop != Termination::RepeatedSupport || repeat_short) && margin == 0)
                 prove_by_faces(pair, s, pool, vv, lower_num, lower_den, lower_w, lower_v);
             break;
         }
@@ -286,7 +286,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     const Termination t = out.termination;
     if (margin == 0 && !intersecting && plain &&
         (changed || (t != Termination::RelativeError && t != Termination::RepeatedSupport) ||
-         (t == Termination::RepeatedSupport && repeat_vw < gjk_detail::kProvenShare * vv)))
+         (t == Termination::RepeatedSupport && repeat_short)))
         out.proven = proven_axis(pair, s, t == Termination::RelativeError, lower_num, lower_den, lower_v);
     const double inv = 1 / pair.scale;
     const double m = max_abs(s.v);

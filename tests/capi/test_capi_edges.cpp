@@ -1094,9 +1094,10 @@ TEST(GjkEdges, TipOverAFaceDiagonalGetsAnAxisThatShowsTheGap) {
             const bool ok = !res.intersecting && std::fabs(res.distance - g) <= 1e-12 + 16 * 0x1p-52 * norm(c) &&
                             shortfall <= allowed;
             if (!ok && failures++ == 0)
-                first = f.name + " / " + t.name + (order ? " (b, a)" : " (a, b)") + " gap " + std::to_string(g) +
-                        " distance " + std::to_string(res.distance) + " separation along the axis " +
-                        std::to_string(sep) + " trial " + std::to_string(trial) + " seed " + std::to_string(seed);
+                first = f.name + " / " + t.name + (order ? " (b, a)" : " (a, b)") +
+                        fmt(" gap %.17g distance %.17g", g, res.distance) +
+                        fmt(" separation along the axis %.17g trial %.0f", sep, trial) + " seed " +
+                        std::to_string(seed);
         }
     }
     std::printf(
