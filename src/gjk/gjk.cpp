@@ -2,10 +2,11 @@
 // GJK distance and intersection loops, instantiated per pair of support kinds (no virtual call and
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"
+#include "gjk/bend.hpp"
+#include "gjk/closed_forms.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/loop_rules.hpp"
 #include "gjk/seed.hpp"
-#include "gjk/closed_forms.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
 
@@ -46,21 +47,20 @@ struct LocalDistance {
 // rounding or restarts the simplex; the iteration guard bounds them too).
 constexpr int kRecoveries = 6;
 
-// margin: sum of the radii folded out of the shapes (0 for polytopes). The distance of the
-// rounded shapes is ||v|| - margin.
-//
-// The estimate never gets worse: a step whose new estimate is longer than the last one (Johnson's
-// determinants decided by rounding on a flat tetrahedron, a sliver, near-duplicate points) is
-// undone. When a rounding-limit rule fires far from the proven lower bound, the nearest point of
-// the hull of the last points is found by enumeration (Simplex::nearest_in_hull), and failing
-// that the simplex restarts from the best axis; the best estimate of every run is kept.
+// margin: sum of the radii folded out of the shapes (0 for polytopes); the rounded shapes'
+// distance is ||v|| - margin. The estimate never gets worse: a step whose new estimate is longer
+// than the last one (Johnson's determinants decided by rounding on a flat tetrahedron, a sliver,
+// near-duplicate points) is undone. When a rounding-limit rule fires far from the proven lower
+// bound, the nearest point of the hull of the last points is found by enumeration
+// (Simplex::nearest_in_hull), and failing that the simplex restarts from the best axis; the best
+// estimate of every run is kept. Curved pairs' simplices slide along their rims (bend.hpp).
 
 template <class Pair>
 LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t max_iterations,
                             HeldTetrahedron* held = nullptr, DistanceSeed* seed = nullptr) {
     // pair by value: its scale is set from the first support points
     Simplex s;
-    s.want_lambda = false;  // coordinates once, at the end
+    s.want_lambda = !Pair::exact;  // coordinates once, at the end; curved pairs: the slides' weights
     // First direction: B lies roughly along t from A, so the closest points are near A's support
     // toward t and B's support toward -t; v is a guess at a point of A - B (about -t).
     Vec3 v = -pair.t;
@@ -84,6 +84,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     out.termination = Termination::MaxIterations;
     bool intersecting = false;
     bool scaled = false;
+    gjk_detail::Slides<Pair> slides(seed != nullptr);  // curved pairs (bend.hpp)
     if (seed != nullptr) {
         // The scale is adopted from the seed's first point when there is one (scaled then).
         gjk_detail::seed_simplex(pair, *seed, s, [&](Vec3& a, Vec3& b, Vec3& w) {
@@ -99,6 +100,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     while (it < max_iterations) {
         Vec3 a, b;
         Vec3 w = pair(-v, a, b);
+        slides.called(w);
         if (!scaled) {
             set_scale(pair, a, b, w, margin, margin_sq);
             scaled = true;
@@ -130,6 +132,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         }
         if (stop == Termination::None) {
             const unsigned prev_bits = s.bits;
+            slides.adding(prev_bits, v);
             const Simplex::Outcome o = s.add(w, a, b, prev_bits != 0 ? vv : INFINITY);
             pool = s.last_all;
             if (o == Simplex::Outcome::Full) {
@@ -180,6 +183,10 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
                 } else {
                     vv = nv;
                     v = s.v;
+                    if (slides.after_step(pair, s, vv, lower_num, lower_den, lower_w)) {
+                        vv = dot(s.v, s.v);
+                        v = s.v;
+                    }
                     continue;
                 }
             }
@@ -408,13 +415,6 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
 }
 
 Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
-
-// a / |a| given |a|^2 (one square root, one division); when a is zero or its square under- or
-// overflows, the careful normalisation of a, then of `fallback`, then +x.
-inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
-    if (norm_sq > 1e-200 && norm_sq < 1e200) return (1 / std::sqrt(norm_sq)) * a;
-    return normalized_or(a, normalized_or(fallback, {1, 0, 0}));
-}
 
 // Pairs with a closed form: cores that are points or segments (spheres, capsules, points,
 // segments), or a point core and a box (a sphere or a point and a box). No GJK loop, one

@@ -61,6 +61,12 @@ inline Vec3 normalized_or_else(Vec3 a, Fallback&& fallback) {
 inline Vec3 normalized_or(Vec3 a, Vec3 fallback) {
     return normalized_or_else(a, [&] { return fallback; });
 }
+// a / |a| given |a|^2 (one square root, one division); when a is zero or its square under- or
+// overflows, the careful normalisation of a, then of `fallback`, then +x.
+inline Vec3 unit_or(Vec3 a, double norm_sq, Vec3 fallback) {
+    if (norm_sq > 1e-200 && norm_sq < 1e200) return (1 / std::sqrt(norm_sq)) * a;
+    return normalized_or(a, normalized_or(fallback, {1, 0, 0}));
+}
 
 // normalized_or({x, y, 0}, {}) bit for bit, for supports that normalise only a radial part
 // (cylinders, cones): the zero third component changes no rounding (0 / m and adding +0 are
