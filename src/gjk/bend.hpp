@@ -12,6 +12,7 @@
 // (docs/algorithms.md §2, "Rim slides").
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -173,6 +174,10 @@ bool bent_direction(const Pair& pair, const Simplex& s, SlotModels& sm, double k
 // keeps the result when its points' affine hull's nearest point lies inside it (coordinates >= 0)
 // and is nearer than ||v|| by more than rounding (vv = ||v||^2). Points that land together (the
 // two ends of a bracket on one rim) merge. True when kept; otherwise s is as it was.
+// A merge's arc allowance: chord^2 <= kMergeArc * ||v|| * rho (chord theta rho, error rho theta^2 / 2
+// against the distance ||v||): a tilt below about 1e-3 rad.
+inline constexpr double kMergeArc = 1e-3;
+
 template <class Pair>
 bool slide_simplex(const Pair& pair, Simplex& s, SlotModels& sm, double vv, double lower_sq, double lower_w_sq) {
     Vec3 u;
@@ -194,11 +199,26 @@ bool slide_simplex(const Pair& pair, Simplex& s, SlotModels& sm, double vv, doub
         if (ga.valid && p.fa.rim) s.pa[i] = pair.scale * rim_point(pair.sa, p.fa, ga);
         if (gb.valid && p.fb.rim) s.pb[i] = pair.scale * (pair.r * rim_point(pair.sb, p.fb, gb) + pair.t);
         s.y[i] = s.pa[i] - s.pb[i];
-        bool dup = false;
-        for (unsigned q = bits; q; q &= q - 1) dup |= s.y[std::countr_zero(q)] == s.y[i];
+        bool dup = false, wide = false;
+        for (unsigned q = bits; q; q &= q - 1) {
+            const int k = std::countr_zero(q);
+            if (!(s.y[k] == s.y[i])) continue;
+            dup = true;
+            // A merge trusts the Newton step with the bracket's whole arc, whose error (about
+            // rho theta^2 for an arc theta wide) tilts the merged point's direction by that over
+            // the distance: past a few degrees its support can land across the rim, and GJK has
+            // lost the bracket. Merging waits until the arc is narrow enough.
+            const Vec3 chord = oy[i] - oy[k];
+            const double rho = std::max(std::max(p.ra.rho, p.rb.rho), 1e-300);
+            wide |= !(dot(chord, chord) <= kMergeArc * std::sqrt(vv) * rho);
+        }
+        if (wide) {
+            bits = 0;
+            break;
+        }
         if (!dup) bits |= 1u << i;
     }
-    {
+    if (bits != 0) {
         s.recompute_all(bits);
         s.set_from_subset(bits);
         bool inside = true;

@@ -35,7 +35,8 @@ else()
 endif()
 
 # Near contact on curved surfaces against a closed-form gap.
-kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_curved_contact.cpp LIBS kairos_core)
+kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_curved_contact.cpp
+             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_slides.cpp LIBS kairos_core)
 
 # Signed distance (EPA) against closed forms, the polytope oracle and the touching invariant.
 kairos_gtest(test_penetration SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_penetration.cpp LIBS kairos_core)
