@@ -84,7 +84,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     out.termination = Termination::MaxIterations;
     bool intersecting = false;
     bool scaled = false;
-    gjk_detail::Slides<Pair> slides(seed != nullptr);  // curved pairs (bend.hpp)
+    gjk_detail::Slides<Pair> slides(seed != nullptr, tolerance);  // curved pairs (bend.hpp)
     if (seed != nullptr) {
         // The scale is adopted from the seed's first point when there is one (scaled then).
         gjk_detail::seed_simplex(pair, *seed, s, [&](Vec3& a, Vec3& b, Vec3& w) {
