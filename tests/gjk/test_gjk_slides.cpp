@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "gjk/gjk.hpp"
@@ -55,6 +56,30 @@ struct Calls {
     double mean() const { return n ? sum / n : 0; }
 };
 
+struct Tally {
+    Calls calls, calls_clear;  // all gaps; gaps of 1e-3 and more
+    double worst = 0;          // relative distance error
+    int cases = 0;
+};
+
+// The distance of `first` and `second` (swapped when order is 1) against the gap g, at tolerance
+// 1e-10: apart, within the tolerance plus rounding of coordinates 1e3 in size, tallied. The result
+// has point_a on `first` whatever the order.
+DistanceResult check_gap(const Shape& first, const Transform& pose_first, const Shape& second,
+                         const Transform& pose_second, int order, double g, Tally& t, const char* where) {
+    DistanceResult d = order == 0 ? gjk_distance(first, pose_first, second, pose_second, 1e-10, 256)
+                                  : gjk_distance(second, pose_second, first, pose_first, 1e-10, 256);
+    if (order == 1) std::swap(d.point_a, d.point_b);
+    ++t.cases;
+    t.calls.add(d.iterations);
+    if (g >= 1e-3) t.calls_clear.add(d.iterations);
+    const double err = std::fabs(d.distance - g);
+    t.worst = std::max(t.worst, err / g);
+    EXPECT_FALSE(d.intersecting) << where << " order " << order;
+    EXPECT_LE(err, 1e-10 * g + 1e-12) << where << " order " << order << " gap " << g << " distance " << d.distance;
+    return d;
+}
+
 }  // namespace
 
 // A box's corner over a rim: the cylinder's top or bottom rim, or a cone's base rim. The corner c
@@ -70,9 +95,8 @@ TEST(GjkSlides, BoxCornerOverARimMatchesTheClosedForm) {
     ConeShape cone(r, h);
     const Vec3 half{0.5, 0.7, 0.4};
     BoxShape box(half);
-    Calls calls, calls_clear;
-    double worst = 0, worst_point = 0;
-    int cases = 0;
+    Tally t;
+    double worst_point = 0;
     for (int i = 0; i < 4000; ++i) {
         const bool use_cone = i % 2 == 1;
         const double phi = 2 * kPi * u01(rng);
@@ -104,34 +128,24 @@ TEST(GjkSlides, BoxCornerOverARimMatchesTheClosedForm) {
         const Transform box_world{q * box_pose.rotation, q * box_pose.translation + offset};
         const Shape& curved = use_cone ? static_cast<const Shape&>(cone) : static_cast<const Shape&>(cylinder);
         const Vec3 c_world = q * c + offset, p0_world = q * p0 + offset;
+        const std::string where = "seed " + std::to_string(seed) + " case " + std::to_string(i);
         for (int order = 0; order < 2; ++order) {
-            const DistanceResult d = order == 0 ? gjk_distance(box, box_world, curved, curved_pose, 1e-10, 256)
-                                                : gjk_distance(curved, curved_pose, box, box_world, 1e-10, 256);
-            ++cases;
-            calls.add(d.iterations);
-            if (g >= 1e-3) calls_clear.add(d.iterations);
-            const double err = std::fabs(d.distance - g);
-            worst = std::max(worst, err / g);
-            const Vec3 on_box = order == 0 ? d.point_a : d.point_b, on_curved = order == 0 ? d.point_b : d.point_a;
-            const double off = std::max(length(on_box - c_world), length(on_curved - p0_world));
-            worst_point = std::max(worst_point, off);
-            ASSERT_FALSE(d.intersecting) << "seed " << seed << " case " << i << " order " << order;
-            // Within the tolerance (relative), plus rounding of coordinates 1e3 in size.
-            EXPECT_LE(err, 1e-10 * g + 1e-12)
-                << "seed " << seed << " case " << i << " order " << order << " gap " << g << " distance " << d.distance;
+            const DistanceResult d = check_gap(box, box_world, curved, curved_pose, order, g, t, where.c_str());
             // The nearest points are unique: the witness points are them, to about the square root
             // of the distance's accuracy times the rim's radius.
-            EXPECT_LE(off, 1e-5 * std::sqrt(g) + 1e-9) << "seed " << seed << " case " << i << " order " << order;
+            const double off = std::max(length(d.point_a - c_world), length(d.point_b - p0_world));
+            worst_point = std::max(worst_point, off);
+            EXPECT_LE(off, 1e-5 * std::sqrt(g) + 1e-9) << where << " order " << order;
         }
     }
     std::printf(
         "box corner over a rim: %d queries, worst relative error %.3g, witness points off by %.3g, %.2f "
         "support calls per query, %.2f at gaps above 1e-3\n",
-        cases, worst, worst_point, calls.mean(), calls_clear.mean());
+        t.cases, t.worst, worst_point, t.calls.mean(), t.calls_clear.mean());
     // Without the slides: 23.0 calls per query, 19.9 at gaps above 1e-3 (12.0 with them). Near
     // contact the slides start late (they wait for a positive lower bound, which GJK proves only
     // near its end there), so the bound is on the clear gaps.
-    EXPECT_LT(calls_clear.mean(), 15.0) << "seed " << seed;
+    EXPECT_LT(t.calls_clear.mean(), 15.0) << "seed " << seed;
 }
 
 // A segment crossing a cylinder's side at an angle beta to its axis (a box's edge over the side):
@@ -144,9 +158,7 @@ TEST(GjkSlides, SegmentAcrossACylinderSideMatchesTheClosedForm) {
     std::uniform_real_distribution<double> u01(0, 1);
     const double r = 0.6, h = 0.9;
     CylinderShape cylinder(r, h);
-    Calls calls, calls_clear;
-    double worst = 0;
-    int cases = 0;
+    Tally t;
     for (int i = 0; i < 4000; ++i) {
         const double phi = 2 * kPi * u01(rng);
         const Vec3 radial{std::cos(phi), std::sin(phi), 0}, tangent{-std::sin(phi), std::cos(phi), 0};
@@ -160,25 +172,17 @@ TEST(GjkSlides, SegmentAcrossACylinderSideMatchesTheClosedForm) {
         const Vec3 offset = i % 4 < 2 ? Vec3{} : Vec3{-1e3, 1e3 * u01(rng), 1e3};
         const Transform cyl_pose{q, offset};
         const Transform seg_pose{q * from_columns(e1, e2, e), q * ((r + g) * radial + Vec3{0, 0, z0}) + offset};
+        const std::string where = "seed " + std::to_string(seed) + " case " + std::to_string(i);
         for (int order = 0; order < 2; ++order) {
-            const DistanceResult d = order == 0 ? gjk_distance(segment, seg_pose, cylinder, cyl_pose, 1e-10, 256)
-                                                : gjk_distance(cylinder, cyl_pose, segment, seg_pose, 1e-10, 256);
-            ++cases;
-            calls.add(d.iterations);
-            if (g >= 1e-3) calls_clear.add(d.iterations);
-            const double err = std::fabs(d.distance - g);
-            worst = std::max(worst, err / g);
-            ASSERT_FALSE(d.intersecting) << "seed " << seed << " case " << i << " order " << order;
-            EXPECT_LE(err, 1e-10 * g + 1e-12)
-                << "seed " << seed << " case " << i << " order " << order << " gap " << g << " distance " << d.distance;
-            EXPECT_NEAR(length(d.point_b - d.point_a), d.distance, 1e-10 * g + 1e-12)
-                << "seed " << seed << " case " << i;
+            const DistanceResult d = check_gap(segment, seg_pose, cylinder, cyl_pose, order, g, t, where.c_str());
+            // The witness points are the gap apart, across the side (any pair along the contact).
+            EXPECT_NEAR(length(d.point_b - d.point_a), d.distance, 1e-10 * g + 1e-12) << where;
         }
     }
     std::printf(
         "segment across a cylinder's side: %d queries, worst relative error %.3g, %.2f support calls per "
         "query, %.2f at gaps above 1e-3\n",
-        cases, worst, calls.mean(), calls_clear.mean());
+        t.cases, t.worst, t.calls.mean(), t.calls_clear.mean());
     // No bound on the calls: here the slides cost some (13.7 per query against 11.6 without; a
     // slide that merges a bracket on one rim leaves GJK a simplex it converges from more slowly
     // across the segment's two ends). The test holds the answers to the closed form.
