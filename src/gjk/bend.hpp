@@ -31,8 +31,9 @@ struct Rim {
     Vec3 t{};
 };
 
-// The feature a support point lies on: Fixed (a vertex, an apex, a general shape's point: never
-// slides) or a revolution shape's rim at local z = `z` (a cylinder's +-h, a cone's base -h).
+// The feature a support point lies on: a revolution shape's rim at local z = `z` (a cylinder's
+// +-h, a cone's base -h), or none that slides (rim false: a vertex, an apex, a general shape's
+// point).
 struct Feature {
     bool rim = false;
     double z = 0;
