@@ -273,11 +273,14 @@ struct Slides {
 
     // A call returned w (every call, before it is added).
     void called(Vec3 w) {
+        if (!on) return;
         if (slid && w == last_w) on = false;
         last_w = w;
     }
     // The call along v is about to go into the simplex (its first free slot).
-    void adding(unsigned prev_bits, Vec3 v) { models.set_call(std::countr_zero(~prev_bits & 15u) & 3, v); }
+    void adding(unsigned prev_bits, Vec3 v) {
+        if (on) models.set_call(std::countr_zero(~prev_bits & 15u) & 3, v);
+    }
     // After a step that shortened the estimate to vv: true when a slide shortened it further (s.v).
     bool after_step(const Pair& pair, Simplex& s, double vv, double lower_num, double lower_den, Vec3 lower_w) {
         const double gap = vv - lower_num / lower_den;
@@ -292,6 +295,7 @@ struct Slides {
 // Pairs whose supports are all exact (polytopes, points, segments) have no rim: nothing to keep.
 template <class Pair>
 struct Slides<Pair, true> {
+    static constexpr bool on = false;
     Slides(bool, double) {}
     void called(Vec3) {}
     void adding(unsigned, Vec3) {}

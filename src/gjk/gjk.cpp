@@ -60,7 +60,6 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
                             HeldTetrahedron* held = nullptr, DistanceSeed* seed = nullptr) {
     // pair by value: its scale is set from the first support points
     Simplex s;
-    s.want_lambda = !Pair::exact;  // coordinates once, at the end; curved pairs: the slides' weights
     // First direction: B lies roughly along t from A, so the closest points are near A's support
     // toward t and B's support toward -t; v is a guess at a point of A - B (about -t).
     Vec3 v = -pair.t;
@@ -85,6 +84,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
     bool intersecting = false;
     bool scaled = false;
     gjk_detail::Slides<Pair> slides(seed != nullptr, tolerance);  // curved pairs (bend.hpp)
+    s.want_lambda = slides.on;  // coordinates once, at the end, unless slides weigh by them
     if (seed != nullptr) {
         // The scale is adopted from the seed's first point when there is one (scaled then).
         gjk_detail::seed_simplex(pair, *seed, s, [&](Vec3& a, Vec3& b, Vec3& w) {
