@@ -5,6 +5,7 @@
 // After a clip the simplex is kept and re-expressed about the new ray point; restarting from the
 // last support point (docs/algorithms.md §3) took more iterations and time in bench_cast.
 #include "casts/cast.hpp"
+#include "casts/box_cast.hpp"
 #include "casts/cast_loop.hpp"
 #include "gjk/closed_forms.hpp"
 #include "gjk/core_distance.hpp"
@@ -236,6 +237,27 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         out.normal = pose_a.rotation * h.normal;
         out.point = pose_a.apply(0.5 * (pa + pb));
         return out;
+    }
+    // Two boxes: the separating axis test over the step, one "iteration" (box_cast.hpp); what it
+    // declines (touching at the start, grazes, nearly parallel edges) goes to the GJK cast.
+    if (ca.core == Core::Box && cb.core == Core::Box && margin == 0) {
+        const cast_detail::BoxCast bc =
+            cast_detail::box_box_cast(static_cast<const BoxShape&>(*ca.shape).half_extents,
+                                      static_cast<const BoxShape&>(*cb.shape).half_extents, rot, t, r);
+        if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) {
+            CastResult out;
+            out.iterations = 1;
+            if (bc.verdict == cast_detail::BoxCast::Verdict::Miss) {
+                out.termination = Termination::Separated;
+                return out;
+            }
+            out.hit = true;
+            out.termination = Termination::Hit;
+            out.toi = bc.toi;
+            out.normal = pose_a.rotation * bc.normal;
+            out.point = pose_a.apply(bc.point + bc.toi * ta);
+            return out;
+        }
     }
     // The iteration from lambda0 on, first searching along v0.
     auto cast_from = [&](double lambda0, Vec3 v0, uint32_t budget) {
