@@ -7,6 +7,8 @@
 // the axis as computed), so the time is a lower bound up to the rounding of the offsets.
 #include "casts/box_cast.hpp"
 
+#include "gjk/closed_forms.hpp"
+
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -92,20 +94,21 @@ Vec3 face_contact(Vec3 h, int i, double sign, Vec3 hi, const Mat3& m, Vec3 c, do
 }
 
 // The midpoint of the closest points of A's edge {a0 + s e_i, |s| <= ha_i} and B's edge
-// {b0 + u d, |u| <= hb_j} (d unit, e_i . d = cij, |e_i x d|^2 = across > 0).
-Vec3 edge_contact(Vec3 a0, int i, double hai, Vec3 b0, Vec3 d, double hbj, double cij, double across) {
-    const Vec3 w = a0 - b0;
-    const double wa = w[i], wd = dot(d, w);
-    const double s = std::fmax(-hai, std::fmin(hai, (cij * wd - wa) / across));
-    const double u = std::fmax(-hbj, std::fmin(hbj, wd + s * cij));
+// {b0 + u d, |u| <= hb_j} (d unit): closed_form::closest_points with the axes turned so that e_i
+// is its e_z (its form has no cancellation on nearly parallel edges).
+Vec3 edge_contact(Vec3 a0, int i, double hai, Vec3 b0, Vec3 d, double hbj) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    const Vec3 c = b0 - a0;
+    const closed_form::SegmentPair sp =
+        closed_form::closest_points(hai, {c[i1], c[i2], c[i]}, {d[i1], d[i2], d[i]}, hbj);
     Vec3 pa = a0;
-    pa[i] += s;
-    return 0.5 * (pa + (b0 + u * d));
+    pa[i] += sp.s;
+    return 0.5 * (pa + (b0 + sp.u * d));
 }
 
 }  // namespace
 
-BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
+BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double tolerance) {
     BoxCast out;
     const double size = ha.x + ha.y + ha.z + hb.x + hb.y + hb.z;
     const double reach = size + std::fabs(t.x) + std::fabs(t.y) + std::fabs(t.z);
@@ -118,6 +121,10 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
     // and the step's end there are left to the GJK cast, whose conventions cover them.
     const double band = 1e-9 * size;
     if (!(motion > band)) return out;
+    const double tol = std::fmax(tolerance, 1e-15);
+    const double parallel_sq = (0.01 * tol) * (0.01 * tol);
+    const double sharp = 10 * kEps * reach / (tol * size);
+    const double sharp_sq = sharp * sharp;
     // The rounding of the offsets L.t (|L| <= 1; exact on A's faces): part of the allowance that
     // keeps rounding from turning a contact into a miss (the exits are later by it, and a gap
     // within it is not a separation). The entry keeps its rounding, as the GJK cast's clips do:
@@ -128,10 +135,12 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
     int best = -1;                  // the axis of the latest entry (0-2 A's faces, 3-5 B's, 6+ edges)
     double face_enter = -INFINITY;  // the latest entry over the face axes, and its axis
     int face_best = -1;
-    double best_c = 0, best_len_sq = 1, face_c = 0;
+    double best_c = 0, best_len_sq = 1, face_c = 0, best_slack = 0;
     Vec3 best_l{}, face_l{};
-    // One axis L (not unit): c = L.t, s = L.r, w the two half widths along L summed. False when
-    // this axis alone separates the boxes over the whole step.
+    // One axis L (not unit): c = L.t, s = L.r, w the two half widths along L summed. Miss when
+    // this axis alone separates the boxes over the whole step by more than the band, Declined
+    // when by less (GJK counts that as touching at the start), else Hit: the axis leaves it open.
+    using Verdict = BoxCast::Verdict;
     auto axis = [&](int id, Vec3 l, double len_sq, double c, double s, double w, double c_error) {
         // The rounding of the gap: c's, w's (a sum of four products) and the subtraction's.
         const double allow = 4 * kEps * (c_error + w) + kEps * std::fabs(c);
@@ -142,32 +151,37 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
         if (approach > 0) {
             const double in = gap / approach, out_at = (a + w + allow) / approach;
             if (out_at < leave) leave = out_at;
-            if (in > enter) enter = in, best = id, best_c = c, best_len_sq = len_sq, best_l = l;
+            if (in > enter) {
+                enter = in, best = id, best_c = c, best_len_sq = len_sq, best_l = l;
+                // How late the entry may be: its offsets' rounding, about eps of the reach
+                // whatever |L| (an edge axis's direction carries absolute rounding of eps).
+                best_slack = 4 * kEps * reach / approach;
+            }
             if (id < 6 && in > face_enter) face_enter = in, face_best = id, face_c = c, face_l = l;
-            return true;
+            return Verdict::Hit;
         }
-        if (gap > allow) return false;  // apart, and not closing along L
+        if (gap > allow) return norm_gap > band ? Verdict::Miss : Verdict::Declined;  // apart, not closing
         if (approach < 0) {
             const double out_at = (w - a + allow) / -approach;
             if (out_at < leave) leave = out_at;
         }
-        return true;
+        return Verdict::Hit;
     };
     double abs_r[3][3];
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) abs_r[i][j] = std::fabs(rot.r[i][j]);
     for (int i = 0; i < 3; ++i) {  // A's faces: L = e_i
         const double w = ha[i] + hb.x * abs_r[i][0] + hb.y * abs_r[i][1] + hb.z * abs_r[i][2];
-        if (!axis(i, unit_axis(i), 1, t[i], r[i], w, 0)) {
-            out.verdict = BoxCast::Verdict::Miss;
+        if (const Verdict v = axis(i, unit_axis(i), 1, t[i], r[i], w, 0); v != Verdict::Hit) {
+            out.verdict = v;
             return out;
         }
     }
     for (int j = 0; j < 3; ++j) {  // B's faces: L = b_j
         const Vec3 b = rot.col(j);
         const double w = hb[j] + ha.x * abs_r[0][j] + ha.y * abs_r[1][j] + ha.z * abs_r[2][j];
-        if (!axis(3 + j, b, 1, dot(b, t), dot(b, r), w, t_sum)) {
-            out.verdict = BoxCast::Verdict::Miss;
+        if (const Verdict v = axis(3 + j, b, 1, dot(b, t), dot(b, r), w, t_sum); v != Verdict::Hit) {
+            out.verdict = v;
             return out;
         }
     }
@@ -177,16 +191,18 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
             const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
             const Vec3 l = cross(unit_axis(i), rot.col(j));
             const double len_sq = dot(l, l);
-            // Parallel edges (within 1e-14 rad) add nothing the face axes miss by more than that
-            // angle times the size; between that and 1e-3 rad the axis's direction carries rounding
-            // of eps / angle, so its time could be early by up to about 1e-8 of the size.
-            if (len_sq <= 1e-28) continue;
-            if (len_sq < 1e-6) return out;
+            // Edges at an angle a (|L| = sin a) apart: parallel ones add nothing the face axes
+            // miss, and below a = tolerance / 100 the axis adds less than that share of the size.
+            // The axis's direction carries rounding of eps / a, which tilts its bound by that
+            // times the reach: above `sharp` within tolerance / 10 of the size. Between the two
+            // the closed form would need more care than GJK: the cast is declined.
+            if (len_sq <= parallel_sq) continue;
+            if (len_sq < sharp_sq) return out;
             // |L.e_k| = |R_{k j}| for k != i, and |L.b_k| = |R_{i m}| for the third index m.
             const double w =
                 ha[i1] * abs_r[i2][j] + ha[i2] * abs_r[i1][j] + hb[j1] * abs_r[i][j2] + hb[j2] * abs_r[i][j1];
-            if (!axis(6 + 3 * i + j, l, len_sq, dot(l, t), dot(l, r), w, t_sum)) {
-                out.verdict = BoxCast::Verdict::Miss;
+            if (const Verdict v = axis(6 + 3 * i + j, l, len_sq, dot(l, t), dot(l, r), w, t_sum); v != Verdict::Hit) {
+                out.verdict = v;
                 return out;
             }
         }
@@ -199,13 +215,17 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
         return out;
     }
     if (!(enter > 0) || best < 0) return out;  // not expected after the start test; left to GJK
-    // The normal and feature: a face's when a face axis enters within the band of the latest
-    // (a face resting on a face or an edge ties with the edge axes parallel to it).
+    // The normal and feature: a face's when a face axis enters within the band of the latest, or
+    // within the latest's rounding (a face resting on a face or an edge ties with the axes of the
+    // edges parallel to it, and an edge axis from nearly parallel edges, nearly that face's
+    // normal, can lead by its rounding: its edges' closest points then lie anywhere along them).
+    // The time then sheds that rounding too, keeping to the face's entry at least.
     int id = best;
     double c = best_c, len_sq = best_len_sq;
     Vec3 l = best_l;
-    if (id >= 6 && face_best >= 0 && !((enter - face_enter) * motion > band)) {
+    if (id >= 6 && face_best >= 0 && !((enter - best_slack - face_enter) * motion > band)) {
         id = face_best, c = face_c, len_sq = 1, l = face_l;
+        enter = std::fmax(face_enter, enter - best_slack);
     }
     const double sign = c >= 0 ? 1.0 : -1.0;
     const Vec3 n = (sign / std::sqrt(len_sq)) * l;
@@ -227,7 +247,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r) {
         Vec3 b0 = cb;
         for (int k = 0; k < 3; ++k)
             if (k != j) b0 += (dot(rot.col(k), n) <= 0 ? hb[k] : -hb[k]) * rot.col(k);
-        p = edge_contact(a0, i, ha[i], b0, rot.col(j), hb[j], rot.r[i][j], len_sq);
+        p = edge_contact(a0, i, ha[i], b0, rot.col(j), hb[j]);
     }
     if (!is_finite(p) || !is_finite(n)) return out;
     out.verdict = BoxCast::Verdict::Hit;

@@ -243,7 +243,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     if (ca.core == Core::Box && cb.core == Core::Box && margin == 0) {
         const cast_detail::BoxCast bc =
             cast_detail::box_box_cast(static_cast<const BoxShape&>(*ca.shape).half_extents,
-                                      static_cast<const BoxShape&>(*cb.shape).half_extents, rot, t, r);
+                                      static_cast<const BoxShape&>(*cb.shape).half_extents, rot, t, r, tolerance);
         if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) {
             CastResult out;
             out.iterations = 1;

@@ -1,0 +1,301 @@
+// SPDX-License-Identifier: MIT
+// The box/box shape cast's closed form (casts/box_cast.hpp, the separating axis test over the
+// step) against truths it does not share: the GJK cast on the same boxes given as hulls of their
+// corners (another algorithm), constructed contacts whose time is known (a face onto a face, an
+// edge onto an edge, crossing or nearly parallel), and the long double oracle. Gaps at the start
+// from 1e-13 to 1e-1 of the size, twists from 0 to 0.5 rad, edges from parallel to crossing (the
+// band the closed form leaves to GJK, 1e-14 to 1e-3 rad, and both sides of it), sizes 1e-3 to
+// 1e3, up to 1e5 sizes from the origin, both argument orders.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "cast_test_support.hpp"
+#include "casts/box_cast.hpp"
+#include "casts/cast.hpp"
+#include "gjk/support_kernels.hpp"
+#include "shapes/shape.hpp"
+
+using namespace kairos;
+using namespace cast_test;
+
+namespace {
+
+constexpr uint32_t kMaxIt = 256;
+constexpr double kTol = 1e-10;
+
+// The same box as the hull of its eight corners: shape_cast takes the GJK path for it.
+ShapePtr box_as_hull(Vec3 h) {
+    std::vector<Vec3> p;
+    for (int k = 0; k < 8; ++k) p.push_back({(k & 1) ? h.x : -h.x, (k & 2) ? h.y : -h.y, (k & 4) ? h.z : -h.z});
+    return hull_shape(p);
+}
+
+// Whether the closed form answers this cast itself (shape_cast's own call).
+bool closed_form_answers(Vec3 ha, const Transform& pa, Vec3 ta, Vec3 hb, const Transform& pb, Vec3 tb) {
+    const kernels::RelativeFrame f = kernels::relative_frame(pa, pb);
+    return cast_detail::box_box_cast(ha, hb, f.r, f.t, pa.to_local_direction(tb - ta), kTol).verdict !=
+           cast_detail::BoxCast::Verdict::Declined;
+}
+
+Vec3 rotate(Quat q, Vec3 v) { return to_matrix(q) * v; }
+
+// The angle between two directions, accurate near 0 (acos of the cosine is not below 1e-8).
+double angle_between(Vec3 a, Vec3 b) { return std::atan2(length(cross(a, b)), dot(a, b)); }
+
+// A box's body for the oracle, placed.
+Solid placed_box(Vec3 h, const Transform& pose) {
+    Solid s = make_solid(Kind::Box, 0, 0, h);
+    place(s.body, pose);
+    return s;
+}
+
+// The checks every cast of two boxes gets, in both argument orders: the verdict, the time within
+// `toi_slack` of `truth` and never later, the normal's plane a support plane of M at the true hit
+// (the judge's normal gap), the point on both boxes at toi, the swapped order's mirror answer,
+// and the same verdict and time as the GJK cast on the boxes as hulls. Returns the cast.
+// unique_normal: the contact has one normal (not two parallel edges, whose normals fill a cone:
+// each order may then give another). The point is held to point_slack of the size when the closed
+// form answers; the GJK cast's (what it declines) is returned for the caller to judge.
+struct Checked {
+    CastResult r;
+    bool closed_form = false;
+    double point_error = 0;  // of the first order's point, relative to the size
+};
+Checked check_pair(const char* what, Vec3 ha, const Transform& pa, Vec3 ta, Vec3 hb, const Transform& pb, Vec3 tb,
+                   bool truth_hit, double truth_toi, double toi_slack, double point_slack, bool unique_normal = true) {
+    const BoxShape a(ha), b(hb);
+    Checked out;
+    out.closed_form = closed_form_answers(ha, pa, ta, hb, pb, tb);
+    const CastResult r = shape_cast(a, pa, ta, b, pb, tb, kTol, kMaxIt);
+    const CastResult s = shape_cast(b, pb, tb, a, pa, ta, kTol, kMaxIt);
+    out.r = r;
+    const ShapePtr ha_hull = box_as_hull(ha), hb_hull = box_as_hull(hb);
+    const CastResult g = shape_cast(*ha_hull, pa, ta, *hb_hull, pb, tb, kTol, kMaxIt);
+    EXPECT_EQ(r.hit, truth_hit) << what << " (the hulls: " << g.hit << " " << g.toi << ", swapped: " << s.hit << ")";
+    EXPECT_EQ(s.hit, r.hit) << what << ": the swapped order";
+    EXPECT_EQ(g.hit, r.hit) << what << ": the GJK cast of the hulls";
+    if (!r.hit || !truth_hit) return out;
+    EXPECT_LE(r.toi, truth_toi + toi_slack) << what;
+    EXPECT_GE(r.toi, truth_toi - toi_slack) << what;
+    EXPECT_NEAR(s.toi, r.toi, toi_slack) << what << ": the swapped order";
+    EXPECT_NEAR(g.toi, r.toi, 2 * toi_slack) << what << ": the GJK cast of the hulls";
+    EXPECT_NEAR(length(r.normal), 1, 1e-12) << what;
+    if (r.toi > 0) {
+        if (unique_normal) {
+            EXPECT_LE(length(r.normal + s.normal), 1e-9) << what << ": the swapped order's normal";
+        }
+        // The normal's plane separates the boxes at the true time: h_M(n) - n . (toi r) ~ 0.
+        const Solid sa = placed_box(ha, pa), sb = placed_box(hb, pb);
+        const double gap = static_cast<double>(cast_oracle::support_m(sa.body, sb.body, p3(r.normal)) -
+                                               Real(truth_toi) * cast_oracle::dot(p3(r.normal), p3(tb - ta)));
+        const double size = static_cast<double>(cast_oracle::size_of(sa.body, sb.body));
+        EXPECT_LE(std::fabs(gap), point_slack * size) << what << ": the normal's plane at the true time";
+        const double pg = static_cast<double>(point_gap(sa.body, sb.body, p3(ta), p3(tb), r.toi, p3(r.point)));
+        const double ps = static_cast<double>(point_gap(sa.body, sb.body, p3(ta), p3(tb), s.toi, p3(s.point)));
+        out.point_error = pg / size;
+        if (out.closed_form) {
+            EXPECT_LE(pg, point_slack * size) << what << ": the point off the boxes at toi";
+            EXPECT_LE(ps, point_slack * size) << what << ": the swapped order's point";
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+// A face falling onto a face: B above A's top face (both turned by one random rotation, B also
+// twisted about the face normal), the footprints overlapping, the gap g of the size closed at a
+// chosen lambda* with a sideways drift. The contact time is lambda*, the normal A's face normal.
+TEST(BoxCast, FaceOntoFaceAtEveryGapAndTwist) {
+    const uint64_t seed = 24001;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, closed = 0;
+    double gjk_point = 0;
+    for (double scale : {1e-3, 1.0, 1e3}) {
+        for (double far : {0.0, 1e5}) {
+            for (double gap : {1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1}) {
+                for (double twist : {0.0, 1e-15, 1e-9, 1e-4, 0.5}) {
+                    const Vec3 ha = scale * Vec3{0.5 + u(rng), 0.5 + u(rng), 0.2 + u(rng)};
+                    const Vec3 hb = scale * Vec3{0.5 + u(rng), 0.5 + u(rng), 0.2 + u(rng)};
+                    const Quat q = random_quat(rng);
+                    const Vec3 up = rotate(q, {0, 0, 1});
+                    const Vec3 base = far * scale * random_unit(rng);
+                    const double size = scale * 2;
+                    const Vec3 offset{0.1 * scale * (2 * u(rng) - 1), 0.1 * scale * (2 * u(rng) - 1),
+                                      ha.z + hb.z + gap * size};
+                    const Transform pa = make_transform(base, q);
+                    const Transform pb = make_transform(base + rotate(q, offset), q * axis_angle({0, 0, 1}, twist));
+                    const double lambda = 0.2 + 0.6 * u(rng);
+                    const Vec3 drift = rotate(q, {0.05 * scale * (2 * u(rng) - 1), 0.05 * scale * (2 * u(rng) - 1), 0});
+                    const Vec3 ta = 0.3 * scale * random_unit(rng);
+                    const Vec3 tb = ta + drift - (gap * size / lambda) * up;
+                    // Rounding: the positions' (eps of the distance from the origin) over the
+                    // closing speed, and the tolerance's share of the size (GJK on what it declines).
+                    const double speed = gap * size / lambda;
+                    const double rounding = 1e-15 * (length(base) + size);
+                    const double toi_slack = (kTol * size + 8 * rounding) / speed;
+                    char what[160];
+                    std::snprintf(what, sizeof what, "seed %llu scale %g far %g gap %g twist %g",
+                                  static_cast<unsigned long long>(seed), scale, far, gap, twist);
+                    const Checked c =
+                        check_pair(what, ha, pa, ta, hb, pb, tb, true, lambda, toi_slack, 1e-9 + 100 * rounding / size);
+                    // The closed form takes every clear gap, and every twist but 1e-9: the edges'
+                    // axes then lie in the band it leaves to GJK (1e-12 to about 3e-5 rad here).
+                    EXPECT_EQ(c.closed_form, gap >= 1e-7 && twist != 1e-9) << what;
+                    if (!c.closed_form) gjk_point = std::fmax(gjk_point, c.point_error);
+                    if (c.r.hit && c.r.toi > 0) {
+                        EXPECT_LE(angle_between(c.r.normal, up), 1e-9) << what << ": not the face's normal";
+                        EXPECT_GT(dot(c.r.normal, up), 0) << what << ": the normal points from A toward B";
+                    }
+                    ++cases;
+                    closed += c.closed_form;
+                }
+            }
+        }
+    }
+    std::printf(
+        "[face onto face] %d casts, %d by the closed form; the GJK cast's points off by up to %.2g of the size\n",
+        cases, closed, gjk_point);
+    EXPECT_LE(gjk_point, 1e-7);
+}
+
+// An edge onto an edge: A turned 45 degrees about its x axis (its top an edge along x), B the
+// same and then twisted about the vertical by psi, falling straight onto it: from crossing at right angles
+// to parallel, through the band of nearly parallel edges the closed form leaves to GJK. The
+// edges touch at lambda* whatever psi (both stay horizontal), the normal vertical when they cross.
+TEST(BoxCast, EdgeOntoEdgeFromCrossingToParallel) {
+    const uint64_t seed = 24002;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double tilt = std::acos(-1.0) / 4;
+    int cases = 0, closed = 0;
+    double gjk_point = 0;
+    for (double scale : {1e-3, 1.0, 1e3}) {
+        for (double far : {0.0, 1e5}) {
+            for (double psi : {1.5707963267948966, 0.3, 1e-2, 2e-3, 5e-4, 1e-5, 1e-9, 1e-13, 1e-16, 0.0}) {
+                for (double gap : {1e-6, 1e-2, 0.5}) {
+                    // Square sections: the edges lie over the centres, so B's crosses the line of
+                    // A's at B's centre's offset along it, whatever psi.
+                    const double sa = scale * (0.3 + u(rng)), sb = scale * (0.3 + u(rng));
+                    const Vec3 ha{scale * (0.8 + u(rng)), sa, sa}, hb{scale * (0.8 + u(rng)), sb, sb};
+                    const Quat q = random_quat(rng);
+                    const Vec3 up = rotate(q, {0, 0, 1});
+                    const Vec3 base = far * scale * random_unit(rng);
+                    const double size = 2 * scale;
+                    // Heights of A's top edge over its centre and of B's centre over its bottom edge.
+                    const double top = ha.y * std::sin(tilt) + ha.z * std::cos(tilt);
+                    const double bottom = hb.y * std::sin(tilt) + hb.z * std::cos(tilt);
+                    const Vec3 offset{0.5 * scale * (2 * u(rng) - 1), 0, top + bottom + gap * size};
+                    const Transform pa = make_transform(base, q * axis_angle({1, 0, 0}, tilt));
+                    const Transform pb = make_transform(base + rotate(q, offset),
+                                                        q * axis_angle({0, 0, 1}, psi) * axis_angle({1, 0, 0}, tilt));
+                    const double lambda = 0.2 + 0.6 * u(rng);
+                    const Vec3 ta = 0.3 * scale * random_unit(rng);
+                    const Vec3 tb = ta - (gap * size / lambda) * up;
+                    const double speed = gap * size / lambda;
+                    const double rounding = 1e-15 * (length(base) + size);
+                    const double toi_slack = (kTol * size + 8 * rounding) / speed;
+                    char what[160];
+                    std::snprintf(what, sizeof what, "seed %llu scale %g far %g psi %g gap %g",
+                                  static_cast<unsigned long long>(seed), scale, far, psi, gap);
+                    const Checked c = check_pair(what, ha, pa, ta, hb, pb, tb, true, lambda, toi_slack,
+                                                 1e-9 + 100 * rounding / size, psi > 1e-3);
+                    EXPECT_EQ(c.closed_form, psi != 1e-5 && psi != 1e-9) << what;
+                    if (!c.closed_form) gjk_point = std::fmax(gjk_point, c.point_error);
+                    if (c.r.hit && c.r.toi > 0 && psi > 1e-3) {
+                        EXPECT_LE(angle_between(c.r.normal, up), 1e-9)
+                            << what << ": crossing edges touch along the vertical";
+                    }
+                    ++cases;
+                    closed += c.closed_form;
+                }
+            }
+        }
+    }
+    // GJK's points on nearly parallel edges are the weaker (see the note in docs/algorithms.md §3).
+    std::printf(
+        "[edge onto edge] %d casts, %d by the closed form; the GJK cast's points off by up to %.2g of the size\n",
+        cases, closed, gjk_point);
+    EXPECT_LE(gjk_point, 1e-5);
+}
+
+// Random boxes, turns and motions (half of them hit) against the long double oracle, in both
+// orders and against the GJK cast of the hulls, at three scales and far from the origin.
+TEST(BoxCast, RandomCastsMatchTheOracle) {
+    const uint64_t seed = 24003;
+    std::mt19937_64 rng(seed);
+    int cases = 0, closed = 0, hits = 0;
+    for (double scale : {1e-3, 1.0, 1e3}) {
+        for (double far : {0.0, 1e4}) {
+            for (int i = 0; i < 300; ++i) {
+                Solid a = random_solid(rng, Kind::Box, scale), b = random_solid(rng, Kind::Box, scale);
+                const Vec3 base = far * scale * random_unit(rng);
+                const Cast c = random_cast(rng, a, b, base);
+                place(a.body, c.pa);
+                place(b.body, c.pb);
+                const cast_oracle::Truth t = cast_oracle::toi(a.body, b.body, p3(c.ta), p3(c.tb));
+                if (t.grazing || t.start_overlap) continue;
+                const double size = static_cast<double>(cast_oracle::size_of(a.body, b.body));
+                const double rounding = 1e-15 * (length(base) + size);
+                const double toi_slack = (kTol * size + 8 * rounding) / length(c.tb - c.ta);
+                const Vec3 ha = static_cast<const BoxShape&>(*a.shape).half_extents;
+                const Vec3 hb = static_cast<const BoxShape&>(*b.shape).half_extents;
+                char what[120];
+                std::snprintf(what, sizeof what, "seed %llu scale %g far %g case %d",
+                              static_cast<unsigned long long>(seed), scale, far, i);
+                const Checked k = check_pair(what, ha, c.pa, c.ta, hb, c.pb, c.tb, t.hit, static_cast<double>(t.toi),
+                                             toi_slack, 1e-9 + 100 * rounding / size);
+                if (k.r.hit && k.r.toi > 0 && t.hit) {
+                    const Vec3 tn{static_cast<double>(t.normal.x), static_cast<double>(t.normal.y),
+                                  static_cast<double>(t.normal.z)};
+                    EXPECT_LE(angle_between(k.r.normal, tn), 1e-9) << what << ": the normal against the oracle's";
+                }
+                ++cases;
+                closed += k.closed_form;
+                hits += t.hit;
+            }
+        }
+    }
+    std::printf("[random] %d casts, %d hits, %d by the closed form\n", cases, hits, closed);
+    EXPECT_GT(hits, cases / 4);
+    EXPECT_LT(hits, 3 * cases / 4);
+    EXPECT_GT(closed, 95 * cases / 100);
+}
+
+// Touching or overlapping at the start, a graze within 1e-9 of the size, and the step ending at
+// contact are the GJK cast's: the closed form declines them, and the answers are the GJK cast's
+// on the same boxes as hulls (overlapping: toi 0).
+TEST(BoxCast, TouchingAtTheStartIsLeftToGjk) {
+    const Vec3 h{1, 1, 1};
+    const BoxShape a(h), b(h);
+    const ShapePtr hull = box_as_hull(h);
+    const Transform pa = make_transform({0, 0, 0}, Quat{});
+    auto same_as_hulls = [&](const Transform& pb, Vec3 tb, const char* what) {
+        EXPECT_FALSE(closed_form_answers(h, pa, {}, h, pb, tb)) << what;
+        const CastResult r = shape_cast(a, pa, {}, b, pb, tb, kTol, kMaxIt);
+        const CastResult g = shape_cast(*hull, pa, {}, *hull, pb, tb, kTol, kMaxIt);
+        EXPECT_EQ(r.hit, g.hit) << what;
+        EXPECT_NEAR(r.toi, g.toi, 1e-12) << what;
+        return r;
+    };
+    for (double gap : {0.0, 1e-12, -1e-3}) {
+        const Transform pb = make_transform({0.3, -0.2, 2 + gap}, axis_angle({0, 0, 1}, 0.4));
+        for (Vec3 tb : {Vec3{0, 0, -1}, Vec3{1, 0, 0}, Vec3{0, 0, 1}}) {
+            char what[80];
+            std::snprintf(what, sizeof what, "gap %g motion %g %g %g", gap, tb.x, tb.y, tb.z);
+            const CastResult r = same_as_hulls(pb, tb, what);
+            if (gap <= 0) {
+                EXPECT_TRUE(r.hit) << what;
+                EXPECT_EQ(r.toi, 0) << what;
+            }
+        }
+    }
+    // The step ends 1e-12 short of contact, and a side grazed 1e-12 apart.
+    same_as_hulls(make_transform({0, 0, 3}, Quat{}), {0, 0, -(1 - 1e-12)}, "ends short");
+    same_as_hulls(make_transform({0, 2 + 1e-12, 3}, Quat{}), {0, 0, -6}, "grazes");
+}
