@@ -307,9 +307,11 @@ KAIROS_API int32_t kairos_ray_cast(const kairos_shape* s, const kairos_pose* pos
  * toi: never later than the true first contact by more than the tolerance, never a missed
  * contact. normal: unit, from A toward B (the latest clipping plane; for spheres and capsules
  * among themselves and a sphere with a box, the direction between the cores' closest points at
- * toi, exact for that toi at any tolerance; normal . (translation_b - translation_a) < 0). point:
- * the contact point at toi, world frame (from the final simplex's barycentric coordinates, or
- * those closest points pushed out by the radii). Shapes that overlap at the start: hit 1, toi 0, normal the minimum
+ * toi, exact for that toi at any tolerance; for two boxes clearly apart at the start, the
+ * entering axis of the separating axis test, exact (docs/algorithms.md §3);
+ * normal . (translation_b - translation_a) < 0). point: the contact point at toi, world frame
+ * (from the final simplex's barycentric coordinates, or those closest points pushed out by the
+ * radii, or for two boxes a point where their touching features meet). Shapes that overlap at the start: hit 1, toi 0, normal the minimum
  * translation's axis from A toward B and point midway between the deepest points, as
  * kairos_signed_distance gives them (call it for the depth). Shapes that touch at the start (depth
  * 0 within rounding): hit 1, toi 0, normal = -(translation_b - translation_a), unit (the contact
