@@ -131,7 +131,9 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
     // about eps of the offsets, far below any tolerance.
     const double t_sum = std::fabs(t.x) + std::fabs(t.y) + std::fabs(t.z);
 
-    double enter = -INFINITY, leave = INFINITY, start_gap = -INFINITY;
+    double enter = -INFINITY, leave = INFINITY;
+    bool apart_at_start = false;  // some axis separates the boxes at the start by more than the band
+    const double band_sq = band * band;
     int best = -1;                  // the axis of the latest entry (0-2 A's faces, 3-5 B's, 6+ edges)
     double face_enter = -INFINITY;  // the latest entry over the face axes, and its axis
     int face_best = -1;
@@ -146,8 +148,8 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         const double allow = 4 * kEps * (c_error + w) + kEps * std::fabs(c);
         const double a = std::fabs(c), gap = a - w;
         const double approach = c >= 0 ? -s : s;  // speed of B toward A along L
-        const double norm_gap = gap / std::sqrt(len_sq);
-        if (norm_gap > start_gap) start_gap = norm_gap;
+        const bool clear = gap > 0 && gap * gap > band_sq * len_sq;  // gap / |L| > band
+        apart_at_start |= clear;
         if (approach > 0) {
             const double in = gap / approach, out_at = (a + w + allow) / approach;
             if (out_at < leave) leave = out_at;
@@ -160,7 +162,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
             if (id < 6 && in > face_enter) face_enter = in, face_best = id, face_c = c, face_l = l;
             return Verdict::Hit;
         }
-        if (gap > allow) return norm_gap > band ? Verdict::Miss : Verdict::Declined;  // apart, not closing
+        if (gap > allow) return clear ? Verdict::Miss : Verdict::Declined;  // apart, not closing
         if (approach < 0) {
             const double out_at = (w - a + allow) / -approach;
             if (out_at < leave) leave = out_at;
@@ -207,7 +209,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
             }
         }
     }
-    if (!(start_gap > band)) return out;  // touching or overlapping at the start
+    if (!apart_at_start) return out;  // touching or overlapping at the start
     // Near a graze or the step's end the verdict is within rounding of the other one.
     if (!(std::fabs(leave - enter) * motion > band) || !(std::fabs(enter - 1) * motion > band)) return out;
     if (!(enter <= leave) || !(enter <= 1)) {
