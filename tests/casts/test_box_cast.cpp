@@ -105,6 +105,34 @@ Checked check_pair(const char* what, Vec3 ha, const Transform& pa, Vec3 ta, Vec3
     return out;
 }
 
+// The casts of a constructed family: how many, how many the closed form answered, and the worst
+// point of the GJK cast on the rest (relative to the size), held to `gjk_bound` at the end.
+struct Tally {
+    int cases = 0, closed = 0;
+    double gjk_point = 0;
+    void add(const Checked& c) {
+        ++cases;
+        closed += c.closed_form;
+        if (!c.closed_form) gjk_point = std::fmax(gjk_point, c.point_error);
+    }
+    void report(const char* family, double gjk_bound) const {
+        std::printf("[%s] %d casts, %d by the closed form; the GJK cast's points off by up to %.2g of the size\n",
+                    family, cases, closed, gjk_point);
+        EXPECT_LE(gjk_point, gjk_bound) << family;
+    }
+};
+
+// B falls onto A, closing `gap` of the size at lambda: the time's slack is the tolerance's share
+// of the size plus the positions' rounding (eps of the distance from the origin), over the
+// closing speed; the point's is 1e-9 of the size plus that rounding.
+struct Slack {
+    double toi, point;
+};
+Slack falling_slack(double gap, double size, double lambda, Vec3 base) {
+    const double speed = gap * size / lambda, rounding = 1e-15 * (length(base) + size);
+    return {(kTol * size + 8 * rounding) / speed, 1e-9 + 100 * rounding / size};
+}
+
 }  // namespace
 
 // A face falling onto a face: B above A's top face (both turned by one random rotation, B also
@@ -114,8 +142,7 @@ TEST(BoxCast, FaceOntoFaceAtEveryGapAndTwist) {
     const uint64_t seed = 24001;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    int cases = 0, closed = 0;
-    double gjk_point = 0;
+    Tally tally;
     for (double scale : {1e-3, 1.0, 1e3}) {
         for (double far : {0.0, 1e5}) {
             for (double gap : {1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1}) {
@@ -134,34 +161,24 @@ TEST(BoxCast, FaceOntoFaceAtEveryGapAndTwist) {
                     const Vec3 drift = rotate(q, {0.05 * scale * (2 * u(rng) - 1), 0.05 * scale * (2 * u(rng) - 1), 0});
                     const Vec3 ta = 0.3 * scale * random_unit(rng);
                     const Vec3 tb = ta + drift - (gap * size / lambda) * up;
-                    // Rounding: the positions' (eps of the distance from the origin) over the
-                    // closing speed, and the tolerance's share of the size (GJK on what it declines).
-                    const double speed = gap * size / lambda;
-                    const double rounding = 1e-15 * (length(base) + size);
-                    const double toi_slack = (kTol * size + 8 * rounding) / speed;
+                    const Slack slack = falling_slack(gap, size, lambda, base);
                     char what[160];
                     std::snprintf(what, sizeof what, "seed %llu scale %g far %g gap %g twist %g",
                                   static_cast<unsigned long long>(seed), scale, far, gap, twist);
-                    const Checked c =
-                        check_pair(what, ha, pa, ta, hb, pb, tb, true, lambda, toi_slack, 1e-9 + 100 * rounding / size);
+                    const Checked c = check_pair(what, ha, pa, ta, hb, pb, tb, true, lambda, slack.toi, slack.point);
                     // The closed form takes every clear gap, and every twist but 1e-9: the edges'
                     // axes then lie in the band it leaves to GJK (1e-12 to about 3e-5 rad here).
                     EXPECT_EQ(c.closed_form, gap >= 1e-7 && twist != 1e-9) << what;
-                    if (!c.closed_form) gjk_point = std::fmax(gjk_point, c.point_error);
                     if (c.r.hit && c.r.toi > 0) {
                         EXPECT_LE(angle_between(c.r.normal, up), 1e-9) << what << ": not the face's normal";
                         EXPECT_GT(dot(c.r.normal, up), 0) << what << ": the normal points from A toward B";
                     }
-                    ++cases;
-                    closed += c.closed_form;
+                    tally.add(c);
                 }
             }
         }
     }
-    std::printf(
-        "[face onto face] %d casts, %d by the closed form; the GJK cast's points off by up to %.2g of the size\n",
-        cases, closed, gjk_point);
-    EXPECT_LE(gjk_point, 1e-7);
+    tally.report("face onto face", 1e-7);
 }
 
 // An edge onto an edge: A turned 45 degrees about its x axis (its top an edge along x), B the
@@ -173,8 +190,7 @@ TEST(BoxCast, EdgeOntoEdgeFromCrossingToParallel) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     const double tilt = std::acos(-1.0) / 4;
-    int cases = 0, closed = 0;
-    double gjk_point = 0;
+    Tally tally;
     for (double scale : {1e-3, 1.0, 1e3}) {
         for (double far : {0.0, 1e5}) {
             for (double psi : {1.5707963267948966, 0.3, 1e-2, 2e-3, 5e-4, 1e-5, 1e-9, 1e-13, 1e-16, 0.0}) {
@@ -197,31 +213,24 @@ TEST(BoxCast, EdgeOntoEdgeFromCrossingToParallel) {
                     const double lambda = 0.2 + 0.6 * u(rng);
                     const Vec3 ta = 0.3 * scale * random_unit(rng);
                     const Vec3 tb = ta - (gap * size / lambda) * up;
-                    const double speed = gap * size / lambda;
-                    const double rounding = 1e-15 * (length(base) + size);
-                    const double toi_slack = (kTol * size + 8 * rounding) / speed;
+                    const Slack slack = falling_slack(gap, size, lambda, base);
                     char what[160];
                     std::snprintf(what, sizeof what, "seed %llu scale %g far %g psi %g gap %g",
                                   static_cast<unsigned long long>(seed), scale, far, psi, gap);
-                    const Checked c = check_pair(what, ha, pa, ta, hb, pb, tb, true, lambda, toi_slack,
-                                                 1e-9 + 100 * rounding / size, psi > 1e-3);
+                    const Checked c =
+                        check_pair(what, ha, pa, ta, hb, pb, tb, true, lambda, slack.toi, slack.point, psi > 1e-3);
                     EXPECT_EQ(c.closed_form, psi != 1e-5 && psi != 1e-9) << what;
-                    if (!c.closed_form) gjk_point = std::fmax(gjk_point, c.point_error);
                     if (c.r.hit && c.r.toi > 0 && psi > 1e-3) {
                         EXPECT_LE(angle_between(c.r.normal, up), 1e-9)
                             << what << ": crossing edges touch along the vertical";
                     }
-                    ++cases;
-                    closed += c.closed_form;
+                    tally.add(c);
                 }
             }
         }
     }
-    // GJK's points on nearly parallel edges are the weaker (see the note in docs/algorithms.md §3).
-    std::printf(
-        "[edge onto edge] %d casts, %d by the closed form; the GJK cast's points off by up to %.2g of the size\n",
-        cases, closed, gjk_point);
-    EXPECT_LE(gjk_point, 1e-5);
+    // GJK's points on nearly parallel edges are the weaker (docs/algorithms.md §3, "Box pairs").
+    tally.report("edge onto edge", 1e-5);
 }
 
 // Random boxes, turns and motions (half of them hit) against the long double oracle, in both
