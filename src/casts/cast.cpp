@@ -164,6 +164,25 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
         out.point = pose.apply(c.radius * b.dir);
         return out;
     }
+    // A box, rounded or not: in closed form (box_cast.hpp), one "iteration", unless declined
+    // (a start on or in it, a graze of a plain box).
+    if (c.core == Core::Box) {
+        const cast_detail::BoxCast bc =
+            cast_detail::ray_rounded_box(static_cast<const BoxShape&>(*c.shape).half_extents, c.radius, s, r);
+        if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) {
+            CastResult out;
+            out.iterations = 1;
+            out.termination = Termination::Separated;
+            if (bc.verdict == cast_detail::BoxCast::Verdict::Hit) {
+                out.hit = true;
+                out.termination = Termination::Hit;
+                out.toi = bc.toi;
+                out.normal = pose.rotation * bc.normal;
+                out.point = pose.apply(bc.point);
+            }
+            return out;
+        }
+    }
     auto cast_from = [&](double lambda0, Vec3 v0, uint32_t budget) {
         return with_support(c, [&](auto core) {
             return CastLoop(SingleSupport<decltype(core)>{core}, c.radius, s, r, tolerance, lambda0).run(v0, budget);
@@ -238,25 +257,44 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         out.point = pose_a.apply(0.5 * (pa + pb));
         return out;
     }
-    // Two boxes: the separating axis test over the step, one "iteration" (box_cast.hpp); what it
-    // declines (touching at the start, grazes, nearly parallel edges) goes to the GJK cast.
-    if (ca.core == Core::Box && cb.core == Core::Box && margin == 0) {
-        const cast_detail::BoxCast bc =
-            cast_detail::box_box_cast(static_cast<const BoxShape&>(*ca.shape).half_extents,
-                                      static_cast<const BoxShape&>(*cb.shape).half_extents, rot, t, r, tolerance);
-        if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) {
-            CastResult out;
-            out.iterations = 1;
-            if (bc.verdict == cast_detail::BoxCast::Verdict::Miss) {
-                out.termination = Termination::Separated;
-                return out;
-            }
-            out.hit = true;
-            out.termination = Termination::Hit;
-            out.toi = bc.toi;
-            out.normal = pose_a.rotation * bc.normal;
-            out.point = pose_a.apply(bc.point + bc.toi * ta);
+    // Closed forms against a box (box_cast.hpp), one "iteration"; what they decline (touching at
+    // the start, grazes, nearly parallel edges) goes to the GJK cast. normal and point: A's frame,
+    // A kept at its start pose.
+    using cast_detail::BoxCast;
+    auto closed = [&](const BoxCast& bc, Vec3 normal, Vec3 point) {
+        CastResult out;
+        out.iterations = 1;
+        if (bc.verdict == BoxCast::Verdict::Miss) {
+            out.termination = Termination::Separated;
             return out;
+        }
+        out.hit = true;
+        out.termination = Termination::Hit;
+        out.toi = bc.toi;
+        out.normal = pose_a.rotation * normal;
+        out.point = pose_a.apply(point + bc.toi * ta);
+        return out;
+    };
+    auto half_extents = [](const CoreOf& c) { return static_cast<const BoxShape&>(*c.shape).half_extents; };
+    // Two boxes: the separating axis test over the step.
+    if (ca.core == Core::Box && cb.core == Core::Box && margin == 0) {
+        const BoxCast bc = cast_detail::box_box_cast(half_extents(ca), half_extents(cb), rot, t, r, tolerance);
+        if (bc.verdict != BoxCast::Verdict::Declined) return closed(bc, bc.normal, bc.point);
+    }
+    // A ball (or point) and a box, rounded or not: the ball's centre as a ray against the box grown
+    // by both radii, in the box's frame; the contact point is the centre at toi less the ball's
+    // radius along the normal.
+    if (ca.core == Core::Box && cb.core == Core::Point) {
+        const BoxCast bc = cast_detail::ray_rounded_box(half_extents(ca), margin, t, r);
+        if (bc.verdict != BoxCast::Verdict::Declined) return closed(bc, bc.normal, bc.point - cb.radius * bc.normal);
+    }
+    if (ca.core == Core::Point && cb.core == Core::Box) {
+        // A's centre seen from B (B's frame), moving by -r.
+        const BoxCast bc =
+            cast_detail::ray_rounded_box(half_extents(cb), margin, -mul_transpose(rot, t), -mul_transpose(rot, r));
+        if (bc.verdict != BoxCast::Verdict::Declined) {
+            const Vec3 b_at = t + bc.toi * r;  // B's centre at toi, A's frame
+            return closed(bc, -(rot * bc.normal), b_at + rot * (bc.point - ca.radius * bc.normal));
         }
     }
     // The iteration from lambda0 on, first searching along v0.

@@ -16,6 +16,7 @@
 #include "cast_test_support.hpp"
 #include "casts/box_cast.hpp"
 #include "casts/cast.hpp"
+#include "gjk/closed_forms.hpp"
 #include "gjk/support_kernels.hpp"
 #include "shapes/shape.hpp"
 
@@ -307,4 +308,164 @@ TEST(BoxCast, TouchingAtTheStartIsLeftToGjk) {
     // The step ends 1e-12 short of contact, and a side grazed 1e-12 apart.
     same_as_hulls(make_transform({0, 0, 3}, Quat{}), {0, 0, -(1 - 1e-12)}, "ends short");
     same_as_hulls(make_transform({0, 2 + 1e-12, 3}, Quat{}), {0, 0, -6}, "grazes");
+}
+
+// ---- A ball or a ray against a box, rounded or not (ray_rounded_box) ----------------------------
+
+namespace {
+
+// The box with its eight corners as a hull: the GJK path for the same rounded box.
+struct RoundedPair {
+    BoxShape box;
+    SphereShape ball;
+    MinkowskiSumShape rounded;
+    ShapePtr hull;
+    SphereShape hull_ball;
+    MinkowskiSumShape rounded_hull;
+    RoundedPair(Vec3 h, double rho)
+        : box(h), ball(rho), rounded(box, ball), hull(box_as_hull(h)), hull_ball(rho), rounded_hull(*hull, hull_ball) {}
+    const Shape& shape() const { return ball.radius > 0 ? static_cast<const Shape&>(rounded) : box; }
+    const Shape& gjk_shape() const { return ball.radius > 0 ? static_cast<const Shape&>(rounded_hull) : *hull; }
+};
+
+}  // namespace
+
+// Random balls (and points) cast onto boxes rounded by 0 to 3 times their size, and rays onto the
+// same boxes grown by both radii: the time against the oracle (a ball of both radii against the
+// plain box, its closed form of slabs, edge cylinders and corner balls), against the GJK cast on
+// the hull of the box's corners grown the same, and the swapped order; the normal against the
+// oracle's and the point on both shapes. Sizes 1e-3 to 1e3, 1e4 sizes from the origin.
+TEST(BoxCast, BallsAndRaysOntoRoundedBoxesMatchTheOracle) {
+    const uint64_t seed = 24004;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, closed = 0, hits = 0, corners = 0;
+    double worst_toi = 0, worst_angle = 0;
+    for (double scale : {1e-3, 1.0, 1e3}) {
+        for (double far : {0.0, 1e4}) {
+            for (double rounding : {0.0, 1e-9, 1e-3, 0.3, 3.0}) {
+                for (int i = 0; i < 60; ++i) {
+                    Solid box = random_solid(rng, Kind::Box, scale);
+                    const Vec3 h = static_cast<const BoxShape&>(*box.shape).half_extents;
+                    const double rho_box = rounding * scale * u(rng), rho_ball = (i % 3 == 0 ? 0.0 : u(rng)) * scale;
+                    // The oracle's pair: a ball of both radii against the plain box.
+                    Solid ball = make_solid(Kind::Sphere, rho_box + rho_ball, 0, {});
+                    const Vec3 base = far * scale * random_unit(rng);
+                    const Cast c = random_cast(rng, box, ball, base);
+                    place(box.body, c.pa);
+                    place(ball.body, c.pb);
+                    const cast_oracle::Truth t = cast_oracle::toi(box.body, ball.body, p3(c.ta), p3(c.tb));
+                    if (t.grazing || t.start_overlap) continue;
+                    const RoundedPair pair(h, rho_box);
+                    const SphereShape moving(rho_ball);
+                    const PointShape point;
+                    const Shape& b = rho_ball > 0 ? static_cast<const Shape&>(moving) : point;
+                    const CastResult r = shape_cast(pair.shape(), c.pa, c.ta, b, c.pb, c.tb, kTol, kMaxIt);
+                    const CastResult s = shape_cast(b, c.pb, c.tb, pair.shape(), c.pa, c.ta, kTol, kMaxIt);
+                    const CastResult g = shape_cast(pair.gjk_shape(), c.pa, c.ta, b, c.pb, c.tb, kTol, kMaxIt);
+                    // The ball's centre as a ray against the box grown by both radii.
+                    const RoundedPair grown(h, rho_box + rho_ball);
+                    const CastResult ray = ray_cast(grown.shape(), c.pa, c.pb.translation, c.tb - c.ta, kTol, kMaxIt);
+                    const double size = static_cast<double>(cast_oracle::size_of(box.body, ball.body));
+                    const double rlen = length(c.tb - c.ta);
+                    const double round_off = 1e-15 * (length(base) + size);
+                    const double toi_slack = (kTol * size + 8 * round_off) / rlen;
+                    char what[160];
+                    std::snprintf(what, sizeof what, "seed %llu scale %g far %g rounding %g case %d",
+                                  static_cast<unsigned long long>(seed), scale, far, rounding, i);
+                    EXPECT_EQ(r.hit, t.hit) << what;
+                    EXPECT_EQ(s.hit, t.hit) << what << ": the swapped order";
+                    EXPECT_EQ(g.hit, t.hit) << what << ": the GJK cast";
+                    EXPECT_EQ(ray.hit, t.hit) << what << ": the ray";
+                    ++cases;
+                    closed += r.iterations == 1 && r.termination != Termination::MaxIterations;
+                    if (!t.hit || !r.hit) continue;
+                    ++hits;
+                    const double truth = static_cast<double>(t.toi);
+                    EXPECT_NEAR(r.toi, truth, toi_slack) << what;
+                    EXPECT_NEAR(s.toi, truth, toi_slack) << what << ": the swapped order";
+                    EXPECT_NEAR(g.toi, truth, 2 * toi_slack) << what << ": the GJK cast";
+                    EXPECT_NEAR(ray.toi, truth, toi_slack) << what << ": the ray";
+                    worst_toi = std::fmax(worst_toi, std::fabs(r.toi - truth) * rlen / size);
+                    const Vec3 tn{static_cast<double>(t.normal.x), static_cast<double>(t.normal.y),
+                                  static_cast<double>(t.normal.z)};
+                    EXPECT_LE(length(r.normal + s.normal), 1e-9) << what << ": the swapped order's normal";
+                    if (length(tn) > 0.5) {  // the oracle gives none when it is ambiguous
+                        worst_angle = std::fmax(worst_angle, angle_between(r.normal, tn));
+                        EXPECT_LE(angle_between(r.normal, tn), 1e-6) << what;
+                        EXPECT_LE(angle_between(ray.normal, tn), 1e-6) << what << ": the ray's normal";
+                    }
+                    // The contact point: on the rounded box and on the ball at toi.
+                    const Vec3 at_box = c.pa.apply_inverse(r.point - r.toi * c.ta);
+                    const Vec3 core = closed_form::box_nearest(h, at_box);
+                    EXPECT_NEAR(length(at_box - core), rho_box, 1e-9 * size + 100 * round_off) << what;
+                    const Vec3 centre = c.pb.translation + r.toi * c.tb;
+                    EXPECT_NEAR(length(r.point - centre), rho_ball, 1e-9 * size + 100 * round_off) << what;
+                    int out_axes = 0;
+                    for (int k = 0; k < 3; ++k) out_axes += std::fabs(at_box[k]) > h[k] * (1 + 1e-9);
+                    corners += out_axes >= 2;
+                }
+            }
+        }
+    }
+    std::printf(
+        "[balls onto rounded boxes] %d casts, %d hits (%d at an edge or corner), %d by the closed form; "
+        "worst time %.2g of the size, normal %.2g rad\n",
+        cases, hits, corners, closed, worst_toi, worst_angle);
+    EXPECT_GT(hits, cases / 4);
+    EXPECT_LT(hits, 3 * cases / 4);
+    EXPECT_GT(corners, hits / 10);  // the rounded edges and corners are met, not only faces
+    EXPECT_GT(closed, 9 * cases / 10);
+}
+
+// Constructed entries into the rounded parts with known times, from starts inside the box grown
+// by the radius on every axis (outside the rounded box): a corner's ball along its diagonal, an
+// edge's cylinder across it, a cap met moving along an edge, and a face. Both orders, turned and
+// far from the origin.
+TEST(BoxCast, RoundedCornersEdgesAndCapsAgainstTheClosedForm) {
+    const uint64_t seed = 24005;
+    std::mt19937_64 rng(seed);
+    const Vec3 h{1, 0.6, 0.8};
+    const double rho = 0.5;
+    struct Case {
+        const char* name;
+        Vec3 start, dir;  // box frame, dir unit
+        double distance;  // how far the ball's centre travels to contact
+    };
+    const double d = 0.69, a = 0.3;
+    const Vec3 diag = (1 / std::sqrt(3.0)) * Vec3{1, 1, 1};
+    const Case cases[] = {
+        {"corner ball along the diagonal", Vec3{1, 0.6, 0.8} + d * diag, -1 * diag, d - rho},
+        {"edge cylinder across the edge", {1.4, 0.6 + 0.4, 0}, {-1, 0, 0}, 1.4 - (1 + std::sqrt(rho * rho - 0.16))},
+        {"cap moving along an edge", {1 + a, 0.6, 3}, {0, 0, -1}, 3 - (0.8 + std::sqrt(rho * rho - a * a))},
+        {"face", {0.2, -0.1, 3}, {0, 0, -1}, 3 - 0.8 - rho},
+    };
+    for (const Case& k : cases) {
+        for (double far : {0.0, 1e4}) {
+            const Quat q = random_quat(rng);
+            const Transform pa = make_transform(far * random_unit(rng), q);
+            const Transform pb = make_transform(pa.apply(k.start), Quat{});
+            const double motion = k.distance / 0.5;  // contact at lambda 0.5
+            const Vec3 tb = motion * rotate(q, k.dir);
+            const BoxShape box(h);
+            const SphereShape ball(rho);
+            const PointShape point;
+            const MinkowskiSumShape rounded(box, ball);
+            for (int order = 0; order < 2; ++order) {
+                // The ball of radius rho against the plain box, or the point against the rounded box.
+                const Shape& a_shape = order == 0 ? static_cast<const Shape&>(box) : rounded;
+                const Shape& b_shape = order == 0 ? static_cast<const Shape&>(ball) : point;
+                const CastResult r = shape_cast(a_shape, pa, {}, b_shape, pb, tb, kTol, kMaxIt);
+                const CastResult s = shape_cast(b_shape, pb, tb, a_shape, pa, {}, kTol, kMaxIt);
+                const double slack = 1e-13 * (1 + far) / motion;
+                EXPECT_TRUE(r.hit && s.hit) << k.name << " far " << far << " order " << order;
+                EXPECT_NEAR(r.toi, 0.5, slack) << k.name << " far " << far << " order " << order;
+                EXPECT_NEAR(s.toi, 0.5, slack) << k.name << " far " << far << " order " << order << ": swapped";
+                EXPECT_EQ(r.iterations, 1u) << k.name << ": the closed form";
+            }
+            const CastResult ray = ray_cast(rounded, pa, pb.translation, tb, kTol, kMaxIt);
+            EXPECT_TRUE(ray.hit) << k.name;
+            EXPECT_NEAR(ray.toi, 0.5, 1e-13 * (1 + far) / motion) << k.name << " far " << far;
+        }
+    }
 }
