@@ -288,8 +288,9 @@ KAIROS_API int32_t kairos_intersect(const kairos_shape* a, const kairos_pose* po
  * toi is lambda, never later than the true hit by more than the tolerance and never a missed hit;
  * the iteration stops when the ray point is within tolerance times the shape's size (seen from
  * the ray point) of the surface. normal: unit, outward from the shape at the hit (the latest
- * clipping plane; for spheres and capsules the radius direction at the hit). point: the hit point
- * on the surface, world frame. A ray starting inside (or on the surface): hit, toi 0, normal
+ * clipping plane; for spheres and capsules the radius direction at the hit; for boxes, rounded or
+ * not, exact, from a closed form: docs/algorithms.md §3). point: the hit point on the surface,
+ * world frame. A ray starting inside (or on the surface): hit, toi 0, normal
  * -translation (unit), or for a zero translation the unit direction from the shape's local origin
  * toward the ray's origin (+z when they coincide). No hit: hit 0, toi 1, point and normal
  * unspecified. On curved shapes (cylinders, cones) the double-precision iteration may stop short of
