@@ -64,8 +64,11 @@ Vec3 face_contact(Vec3 h, int i, double sign, Vec3 hi, const Mat3& m, Vec3 c, do
         if (lo <= hi_t) mean = p0 + (0.5 * (lo + hi_t)) * d;
     } else if (free_axes == 2) {
         // A face: Sutherland-Hodgman against the four sides |x_a| <= h_a (a != i), then the
-        // vertex mean (a point of the clipped polygon).
-        Vec3 poly[8], next[8];
+        // vertex mean (a point of the clipped polygon). A convex quad gains at most one vertex per
+        // side; a face flat to rounding (its sides' signs alternating along a line) could gain
+        // more, so the output is capped: every vertex kept is still a point of the face.
+        constexpr int kCap = 16;
+        Vec3 poly[kCap], next[kCap];
         int n = 4;
         poly[0] = base - spans[0] - spans[1];
         poly[1] = base + spans[0] - spans[1];
@@ -77,8 +80,8 @@ Vec3 face_contact(Vec3 h, int i, double sign, Vec3 hi, const Mat3& m, Vec3 c, do
                 for (int q = 0; q < n; ++q) {
                     const Vec3 cur = poly[q], nxt = poly[(q + 1) % n];
                     const double dc = h[a] - side * cur[a], dn = h[a] - side * nxt[a];  // >= 0 inside
-                    if (dc >= 0) next[k++] = cur;
-                    if ((dc >= 0) != (dn >= 0)) next[k++] = cur + (dc / (dc - dn)) * (nxt - cur);
+                    if (dc >= 0 && k < kCap) next[k++] = cur;
+                    if ((dc >= 0) != (dn >= 0) && k < kCap) next[k++] = cur + (dc / (dc - dn)) * (nxt - cur);
                 }
                 n = k;
                 for (int q = 0; q < n; ++q) poly[q] = next[q];
