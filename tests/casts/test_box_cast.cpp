@@ -58,6 +58,22 @@ Solid placed_box(Vec3 h, const Transform& pose) {
 // `toi_slack` of `truth` and never later, the normal's plane a support plane of M at the true hit
 // (the judge's normal gap), the point on both boxes at toi, the swapped order's mirror answer,
 // and the same verdict and time as the GJK cast on the boxes as hulls. Returns the cast.
+// A random cast of a onto b (B aimed at A, about half of them hitting), both bodies placed, and
+// the oracle's truth; `usable` is false for a graze or an overlap at the start (not judged here).
+struct Placed {
+    Cast cast;
+    cast_oracle::Truth truth;
+    bool usable = false;
+};
+Placed place_random(std::mt19937_64& rng, Solid& a, Solid& b, Vec3 base) {
+    Placed p{random_cast(rng, a, b, base), {}, false};
+    place(a.body, p.cast.pa);
+    place(b.body, p.cast.pb);
+    p.truth = cast_oracle::toi(a.body, b.body, p3(p.cast.ta), p3(p.cast.tb));
+    p.usable = !p.truth.grazing && !p.truth.start_overlap;
+    return p;
+}
+
 // unique_normal: the contact has one normal (not two parallel edges, whose normals fill a cone:
 // each order may then give another). The point is held to point_slack of the size when the closed
 // form answers; the GJK cast's (what it declines) is returned for the caller to judge.
@@ -245,11 +261,10 @@ TEST(BoxCast, RandomCastsMatchTheOracle) {
             for (int i = 0; i < 300; ++i) {
                 Solid a = random_solid(rng, Kind::Box, scale), b = random_solid(rng, Kind::Box, scale);
                 const Vec3 base = far * scale * random_unit(rng);
-                const Cast c = random_cast(rng, a, b, base);
-                place(a.body, c.pa);
-                place(b.body, c.pb);
-                const cast_oracle::Truth t = cast_oracle::toi(a.body, b.body, p3(c.ta), p3(c.tb));
-                if (t.grazing || t.start_overlap) continue;
+                const Placed placed = place_random(rng, a, b, base);
+                if (!placed.usable) continue;
+                const Cast& c = placed.cast;
+                const cast_oracle::Truth& t = placed.truth;
                 const double size = static_cast<double>(cast_oracle::size_of(a.body, b.body));
                 const double rounding = 1e-15 * (length(base) + size);
                 const double toi_slack = (kTol * size + 8 * rounding) / length(c.tb - c.ta);
@@ -351,11 +366,10 @@ TEST(BoxCast, BallsAndRaysOntoRoundedBoxesMatchTheOracle) {
                     // The oracle's pair: a ball of both radii against the plain box.
                     Solid ball = make_solid(Kind::Sphere, rho_box + rho_ball, 0, {});
                     const Vec3 base = far * scale * random_unit(rng);
-                    const Cast c = random_cast(rng, box, ball, base);
-                    place(box.body, c.pa);
-                    place(ball.body, c.pb);
-                    const cast_oracle::Truth t = cast_oracle::toi(box.body, ball.body, p3(c.ta), p3(c.tb));
-                    if (t.grazing || t.start_overlap) continue;
+                    const Placed placed = place_random(rng, box, ball, base);
+                    if (!placed.usable) continue;
+                    const Cast& c = placed.cast;
+                    const cast_oracle::Truth& t = placed.truth;
                     const RoundedPair pair(h, rho_box);
                     const SphereShape moving(rho_ball);
                     const PointShape point;
