@@ -307,8 +307,11 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     if (axis >= 0 && (rho == 0 || outside <= 1)) {
         // On a face of the grown box within the box's extent across it: the rounded box's face.
         if (rho == 0 && !((leave - enter) * motion > band)) return out;  // a graze of a plain box
+        // The slab's face the ray enters through is the one it moves toward (r's sign, exact);
+        // p's own sign carries the rounding of s + enter r, eps |s|, which from a start 1e18
+        // sizes away is all there is of it (found by fuzzing: a normal along the motion).
         Vec3 n{};
-        n[axis] = p[axis] >= 0 ? 1 : -1;
+        n[axis] = r[axis] > 0 ? -1 : 1;
         p[axis] = n[axis] * e[axis];
         out.verdict = BoxCast::Verdict::Hit;
         out.toi = enter;

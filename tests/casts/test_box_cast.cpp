@@ -483,3 +483,48 @@ TEST(BoxCast, RoundedCornersEdgesAndCapsAgainstTheClosedForm) {
         }
     }
 }
+
+// Starts far beyond the box (1e2 to 1e18 of its size), aimed at it within about its size, so that
+// the entry point s + lambda r carries rounding up to far above the box itself: every hit still
+// enters through a face the ray moves toward or a capsule it approaches (the normal opposes r),
+// is a unit normal, and lies on the rounded box within the start's rounding. Fuzzing found a
+// normal along the motion (a cube 1e-240 wide grown by 1, from 1e18 away) when the face's side
+// was read from the entry point's sign. Also a tiny box, a flat one, with and without rounding.
+TEST(BoxCast, FarStartsEnterAgainstTheirMotion) {
+    const uint64_t seed = 24006;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, hits = 0, lost = 0;  // lost: hits whose entry point's rounding exceeds the box
+    for (Vec3 h : {Vec3{1e-240, 1e-240, 1e-240}, Vec3{1, 0.6, 0.8}, Vec3{1, 1e-6, 0.5}}) {
+        for (double rho : {0.0, 1e-3, 1.0}) {
+            const double size = h.x + h.y + h.z + rho;
+            for (double far : {1e2, 1e8, 1e12, 1e16, 1e18}) {
+                for (int i = 0; i < 40; ++i) {
+                    const Vec3 s = far * size * random_unit(rng);
+                    const Vec3 aim = (1.5 * size * u(rng)) * random_unit(rng);
+                    const double at = 0.1 + 0.8 * u(rng);
+                    const Vec3 r = (1 / at) * (aim - s);
+                    const cast_detail::BoxCast bc = cast_detail::ray_rounded_box(h, rho, s, r);
+                    ++cases;
+                    if (bc.verdict != cast_detail::BoxCast::Verdict::Hit) continue;
+                    ++hits;
+                    char what[160];
+                    std::snprintf(what, sizeof what, "seed %llu h (%g %g %g) rho %g far %g case %d",
+                                  static_cast<unsigned long long>(seed), h.x, h.y, h.z, rho, far, i);
+                    EXPECT_LT(dot(bc.normal, r), 0) << what << ": the normal does not oppose the motion";
+                    EXPECT_NEAR(length(bc.normal), 1, 1e-15) << what;
+                    EXPECT_TRUE(bc.toi > 0 && bc.toi <= 1) << what << ": toi " << bc.toi;
+                    // On the rounded box: its distance from the box is rho, to the entry's rounding.
+                    const double off = closed_form::safe_length(bc.point - closed_form::box_nearest(h, bc.point));
+                    EXPECT_NEAR(off, rho, 4e-16 * far * size + 1e-15 * size) << what;
+                    lost += 1e-16 * far * size > size;
+                }
+            }
+        }
+    }
+    std::printf("[far starts] %d rays, %d hits, %d beyond the entry's rounding\n", cases, hits, lost);
+    // Most rays aimed within the box's size hit it; the far ones' hits are within rounding either way.
+    EXPECT_GT(hits, cases / 4) << "seed " << seed;
+    EXPECT_LT(hits, cases) << "seed " << seed;
+    EXPECT_GT(lost, 50) << "seed " << seed << ": too few hits beyond the entry's rounding";
+}
