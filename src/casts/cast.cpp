@@ -148,6 +148,21 @@ LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool p
     return l;
 }
 
+// A closed form's answer (box_cast.hpp; Hit or Miss, not Declined) as a cast result, one
+// "iteration": normal and point (the contact at toi) in the frame that `pose` maps to the world.
+CastResult closed_result(const cast_detail::BoxCast& bc, const Transform& pose, Vec3 normal, Vec3 point) {
+    CastResult out;
+    out.iterations = 1;
+    out.termination = Termination::Separated;
+    if (bc.verdict != cast_detail::BoxCast::Verdict::Hit) return out;
+    out.hit = true;
+    out.termination = Termination::Hit;
+    out.toi = bc.toi;
+    out.normal = pose.rotation * normal;
+    out.point = pose.apply(point);
+    return out;
+}
+
 }  // namespace
 
 CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
@@ -169,19 +184,7 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
     if (c.core == Core::Box) {
         const cast_detail::BoxCast bc =
             cast_detail::ray_rounded_box(static_cast<const BoxShape&>(*c.shape).half_extents, c.radius, s, r);
-        if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) {
-            CastResult out;
-            out.iterations = 1;
-            out.termination = Termination::Separated;
-            if (bc.verdict == cast_detail::BoxCast::Verdict::Hit) {
-                out.hit = true;
-                out.termination = Termination::Hit;
-                out.toi = bc.toi;
-                out.normal = pose.rotation * bc.normal;
-                out.point = pose.apply(bc.point);
-            }
-            return out;
-        }
+        if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) return closed_result(bc, pose, bc.normal, bc.point);
     }
     auto cast_from = [&](double lambda0, Vec3 v0, uint32_t budget) {
         return with_support(c, [&](auto core) {
@@ -262,18 +265,7 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     // A kept at its start pose.
     using cast_detail::BoxCast;
     auto closed = [&](const BoxCast& bc, Vec3 normal, Vec3 point) {
-        CastResult out;
-        out.iterations = 1;
-        if (bc.verdict == BoxCast::Verdict::Miss) {
-            out.termination = Termination::Separated;
-            return out;
-        }
-        out.hit = true;
-        out.termination = Termination::Hit;
-        out.toi = bc.toi;
-        out.normal = pose_a.rotation * normal;
-        out.point = pose_a.apply(point + bc.toi * ta);
-        return out;
+        return closed_result(bc, pose_a, normal, point + bc.toi * ta);
     };
     auto half_extents = [](const CoreOf& c) { return static_cast<const BoxShape&>(*c.shape).half_extents; };
     // Two boxes: the separating axis test over the step.

@@ -392,7 +392,10 @@ TEST(BoxCast, BallsAndRaysOntoRoundedBoxesMatchTheOracle) {
                     EXPECT_EQ(g.hit, t.hit) << what << ": the GJK cast";
                     EXPECT_EQ(ray.hit, t.hit) << what << ": the ray";
                     ++cases;
-                    closed += r.iterations == 1 && r.termination != Termination::MaxIterations;
+                    // shape_cast's own call: the ball's centre as a ray against the box grown by both radii.
+                    closed += cast_detail::ray_rounded_box(h, rho_box + rho_ball, c.pa.apply_inverse(c.pb.translation),
+                                                           c.pa.to_local_direction(c.tb - c.ta))
+                                  .verdict != cast_detail::BoxCast::Verdict::Declined;
                     if (!t.hit || !r.hit) continue;
                     ++hits;
                     const double truth = static_cast<double>(t.toi);
