@@ -154,7 +154,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         // The rounding of the gap: c's, w's (a sum of four products) and the subtraction's.
         const double allow = 4 * kEps * (c_error + w) + kEps * std::fabs(c);
         const double a = std::fabs(c), gap = a - w;
-        const double approach = c >= 0 ? -s : s;  // speed of B toward A along L
+        const double approach = c >= 0 ? -s : s;                     // speed of B toward A along L
         const bool clear = gap > 0 && gap * gap > band_sq * len_sq;  // gap / |L| > band
         apart_at_start |= clear;
         if (approach > 0) {
@@ -320,17 +320,24 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
         return out;
     }
     if (rho == 0) return out;  // a plain box entered at once on two slabs: left to GJK
-    // Near an edge or a corner: the capsules of the edges at the entry's corner. The first contact
-    // is on the capsule of the edge whose region the entry lies in (cylinder or cap ball): a ray
-    // inside the grown box that leaves that region into a face's, or into another edge's through
-    // the corner's region, crosses the plane between them within the radius of the edge (or of
-    // the corner), so it is in that capsule there already. Entering at a corner, the corner's
-    // ball is met first for the same reason. The three are tested and the earliest taken.
+    // Near an edge or a corner: the capsules of the edges at the entry's corner, or in an edge's
+    // region (two coordinates past the box) that edge's alone (Ericson §5.5.7). Inside the grown
+    // box every coordinate lies within rho past the box, so a ray from an edge's region meets its
+    // capsule no later than the rest of the rounded box: leaving into a face's region it crosses
+    // the plane between them within rho of the edge; into the corner's region, where the rounded
+    // box is the capsule's cap ball, and on into another edge's, the distance to that edge,
+    // convex along the ray, is within rho when the ray leaves the first edge's region (the one
+    // coordinate past the box there) and wherever it meets that edge's cylinder, so within rho at
+    // the plane between the two edges' regions too, where it equals the distance to the corner:
+    // in the ball before the other cylinder. A corner's region tests its three capsules.
     Vec3 corner;
     for (int k = 0; k < 3; ++k) corner[k] = p[k] >= 0 ? h[k] : -h[k];
     double best = INFINITY;
     Vec3 best_offset{}, best_centre{};
+    closed_form::BallEntry corner_ball;  // the entry's corner's ball, formed once when a cap is it
+    bool corner_ball_done = false;
     for (int m = 0; m < 3; ++m) {
+        if (outside == 2 && std::fabs(p[m]) > h[m]) continue;  // not the edge of the entry's region
         // The capsule along axis m through the corner: its circle across m, then a cap ball when
         // the circle is entered past the edge's end.
         Vec3 s2 = s - corner, r2 = r;
@@ -345,7 +352,14 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
             centre[m] = along;
         } else {
             centre[m] = along >= 0 ? h[m] : -h[m];
-            const closed_form::BallEntry cap = closed_form::ball_entry(s - centre, r, rho);
+            closed_form::BallEntry cap;
+            if (centre[m] != corner[m]) {
+                cap = closed_form::ball_entry(s - centre, r, rho);
+            } else {
+                if (!corner_ball_done)
+                    corner_ball = closed_form::ball_entry(s - corner, r, rho), corner_ball_done = true;
+                cap = corner_ball;
+            }
             lambda = cap.lambda, offset = cap.offset;
         }
         if (lambda >= 0 && lambda < best) best = lambda, best_offset = offset, best_centre = centre;

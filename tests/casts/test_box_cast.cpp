@@ -10,7 +10,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "cast_test_support.hpp"
@@ -530,4 +532,88 @@ TEST(BoxCast, FarStartsEnterAgainstTheirMotion) {
     EXPECT_GT(hits, cases / 4) << "seed " << seed;
     EXPECT_LT(hits, cases) << "seed " << seed;
     EXPECT_GT(lost, 50) << "seed " << seed << ": too few hits beyond the entry's rounding";
+}
+
+// Rays whose entry into the box grown by rho on every axis lies in an edge's region (two
+// coordinates past the box), where ray_rounded_box tests that edge's capsule alone, against the
+// oracle's first contact over every piece of the rounded box (faces, the twelve cylinders, the
+// eight balls): starts just outside a corner of the grown box aimed anywhere, and starts inside the
+// grown box (outside the rounded one) in an edge's region. Boxes 1e-3 to 1 wide, radii 1e-3 to 5.
+TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
+    const uint64_t seed = 24007;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::normal_distribution<double> gauss(0, 1);
+    auto pick = [&](std::initializer_list<double> v) { return *(v.begin() + static_cast<int>(rng() % v.size())); };
+    int edge_entries = 0, hits = 0, grazes = 0, declined = 0;
+    double worst = 0;
+    for (int i = 0; i < 40000; ++i) {
+        Vec3 h, s;
+        for (int k = 0; k < 3; ++k) h[k] = pick({1e-3, 0.1, 1.0}) * (0.5 + 0.5 * u(rng));
+        const double rho = pick({1e-3, 0.3, 1.0, 5.0}) * (0.5 + 0.5 * u(rng));
+        // Odd cases start inside the grown box in the region of the edge along axis m (the other
+        // two coordinates past the box by up to rho), aimed anywhere; even ones just outside a
+        // corner of the grown box, aimed at a point of it.
+        const bool inside = i % 2 == 1;
+        const int m = static_cast<int>(rng() % 3);
+        Vec3 aim;
+        for (int k = 0; k < 3; ++k) {
+            const double sign = rng() % 2 ? 1.0 : -1.0;
+            if (inside)
+                s[k] = k == m ? (2 * u(rng) - 1) * h[k] : sign * (h[k] + rho * u(rng));
+            else
+                s[k] = sign * (h[k] + rho + 2 * rho * u(rng));
+            aim[k] = (2 * u(rng) - 1) * (h[k] + rho);
+        }
+        const Vec3 r = inside ? 4 * rho * Vec3{gauss(rng), gauss(rng), gauss(rng)} : 1.5 * (aim - s);
+        // The entry into the grown box (the start itself when inside it), and its region.
+        double enter = 0, leave = 1;
+        for (int k = 0; k < 3; ++k) {
+            if (r[k] == 0) continue;
+            double lo = (-(h[k] + rho) - s[k]) / r[k], hi = ((h[k] + rho) - s[k]) / r[k];
+            if (lo > hi) std::swap(lo, hi);
+            enter = std::fmax(enter, lo), leave = std::fmin(leave, hi);
+        }
+        if (!(enter <= leave)) continue;
+        const Vec3 p = s + enter * r;
+        int past = 0;
+        for (int k = 0; k < 3; ++k) past += std::fabs(p[k]) > h[k];
+        const double size = h.x + h.y + h.z + rho;
+        if (past != 2 || closed_form::safe_length(s - closed_form::box_nearest(h, s)) < rho + 1e-6 * size) continue;
+        ++edge_entries;
+        const cast_detail::BoxCast bc = cast_detail::ray_rounded_box(h, rho, s, r);
+        if (bc.verdict == cast_detail::BoxCast::Verdict::Declined) {
+            ++declined;
+            continue;
+        }
+        // The oracle at the radius and 1e-9 of the size either side of it: a verdict that changes
+        // within that is a graze, where either answer is right.
+        auto truth = [&](double radius) {
+            P3 box_point;
+            const Real l = cast_oracle::ray_rounded_box(p3(s), p3(r), p3(h), Real(radius), box_point);
+            return l >= 0 && l <= 1 ? static_cast<double>(l) : -1.0;
+        };
+        const double t = truth(rho), t_lo = truth(rho - 1e-9 * size), t_hi = truth(rho + 1e-9 * size);
+        char what[200];
+        std::snprintf(what, sizeof what, "seed %llu case %d h (%g %g %g) rho %g s (%g %g %g) r (%g %g %g)",
+                      static_cast<unsigned long long>(seed), i, h.x, h.y, h.z, rho, s.x, s.y, s.z, r.x, r.y, r.z);
+        const bool hit = bc.verdict == cast_detail::BoxCast::Verdict::Hit;
+        if ((t_lo >= 0) != (t_hi >= 0)) {
+            ++grazes;
+            continue;
+        }
+        EXPECT_EQ(hit, t >= 0) << what << ": oracle toi " << t;
+        if (!hit || t < 0) continue;
+        ++hits;
+        const double err = std::fabs(bc.toi - t) * length(r) / size;
+        worst = std::fmax(worst, err);
+        EXPECT_LE(err, 1e-12) << what << ": toi " << bc.toi << " oracle " << t;
+    }
+    std::printf(
+        "[edge regions] %d entries in an edge's region, %d hits, %d grazes, %d declined; worst time %.2g of the size\n",
+        edge_entries, hits, grazes, declined, worst);
+    EXPECT_GT(edge_entries, 8000) << "seed " << seed;
+    EXPECT_GT(hits, edge_entries / 5) << "seed " << seed;
+    EXPECT_LT(hits, edge_entries * 9 / 10) << "seed " << seed;
+    EXPECT_LT(declined, edge_entries / 100) << "seed " << seed;
 }
