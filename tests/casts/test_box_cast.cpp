@@ -538,7 +538,8 @@ TEST(BoxCast, FarStartsEnterAgainstTheirMotion) {
 // coordinates past the box), where ray_rounded_box tests that edge's capsule alone, against the
 // oracle's first contact over every piece of the rounded box (faces, the twelve cylinders, the
 // eight balls): starts just outside a corner of the grown box aimed anywhere, and starts inside the
-// grown box (outside the rounded one) in an edge's region. Boxes 1e-3 to 1 wide, radii 1e-3 to 5.
+// grown box (outside the rounded one) in an edge's region. Boxes 1e-3 to 1 wide, radii 1e-3 to 5,
+// all of it also scaled by 1e-80 and 1e80.
 TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
     const uint64_t seed = 24007;
     std::mt19937_64 rng(seed);
@@ -549,8 +550,9 @@ TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
     double worst = 0;
     for (int i = 0; i < 40000; ++i) {
         Vec3 h, s;
-        for (int k = 0; k < 3; ++k) h[k] = pick({1e-3, 0.1, 1.0}) * (0.5 + 0.5 * u(rng));
-        const double rho = pick({1e-3, 0.3, 1.0, 5.0}) * (0.5 + 0.5 * u(rng));
+        const double scale = pick({1.0, 1.0, 1e-80, 1e80});
+        for (int k = 0; k < 3; ++k) h[k] = scale * pick({1e-3, 0.1, 1.0}) * (0.5 + 0.5 * u(rng));
+        const double rho = scale * pick({1e-3, 0.3, 1.0, 5.0}) * (0.5 + 0.5 * u(rng));
         // Odd cases start inside the grown box in the region of the edge along axis m (the other
         // two coordinates past the box by up to rho), aimed anywhere; even ones just outside a
         // corner of the grown box, aimed at a point of it.
