@@ -154,7 +154,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         // The rounding of the gap: c's, w's (a sum of four products) and the subtraction's.
         const double allow = 4 * kEps * (c_error + w) + kEps * std::fabs(c);
         const double a = std::fabs(c), gap = a - w;
-        const double approach = c >= 0 ? -s : s;                     // speed of B toward A along L
+        const double approach = c >= 0 ? -s : s;  // speed of B toward A along L
         const bool clear = gap > 0 && gap * gap > band_sq * len_sq;  // gap / |L| > band
         apart_at_start |= clear;
         if (approach > 0) {

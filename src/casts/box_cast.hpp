@@ -33,8 +33,8 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
 // The ray enters the box grown by rho on every axis (a slab test); an entry with at most one
 // coordinate past the box is on a face and exact; otherwise the capsule of the edge whose region
 // it is in decides, or in a corner's region the earliest of the three at the corner (cylinders as
-// circles in the planes across the edges, caps as balls: closed_form::ball_entry). normal: outward of the grown
-// box at the hit; point: the hit on its surface. Declined where the GJK cast's conventions are
+// circles in the planes across the edges, caps as balls: closed_form::ball_entry). normal:
+// outward of the grown box at the hit; point: the hit on its surface. Declined where the GJK cast's conventions are
 // needed: a start within 1e-9 of the size of the grown box or inside it, a motion below that,
 // sizes or offsets beyond 1e-100 .. 1e100, anything not finite.
 BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r);
