@@ -158,7 +158,8 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         const bool clear = gap > 0 && gap * gap > band_sq * len_sq;  // gap / |L| > band
         apart_at_start |= clear;
         if (approach > 0) {
-            const double in = gap / approach, out_at = (a + w + allow) / approach;
+            const double inv = 1 / approach;
+            const double in = gap * inv, out_at = (a + w + allow) * inv;
             if (out_at < leave) leave = out_at;
             if (in > enter) {
                 enter = in, best = id, best_c = c, best_len_sq = len_sq, best_l = l;
