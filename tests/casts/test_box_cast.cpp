@@ -539,15 +539,23 @@ TEST(BoxCast, FarStartsEnterAgainstTheirMotion) {
 // oracle's first contact over every piece of the rounded box (faces, the twelve cylinders, the
 // eight balls): starts just outside a corner of the grown box aimed anywhere, and starts inside the
 // grown box (outside the rounded one) in an edge's region. Boxes 1e-3 to 1 wide, radii 1e-3 to 5,
-// all of it also scaled by 1e-80 and 1e80.
+// all of it also scaled by 1e-80 and 1e80. Verdict and time, and for hits the normal (the
+// oracle's, from its box point to its entry) and the point (on the ray, on the rounded box). The
+// slab test below only sorts the cases into regions and counts them; nothing is checked against it.
 TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
     const uint64_t seed = 24007;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     std::normal_distribution<double> gauss(0, 1);
     auto pick = [&](std::initializer_list<double> v) { return *(v.begin() + static_cast<int>(rng() % v.size())); };
-    int edge_entries = 0, hits = 0, grazes = 0, declined = 0;
-    double worst = 0;
+    int edge_entries = 0, hits = 0, grazes = 0, declined = 0, corner_hits = 0;
+    double worst = 0, worst_angle = 0;
+    // How many coordinates of x lie past the box: 3 on a corner's ball.
+    auto out_axes = [](Vec3 hh, Vec3 x) {
+        int n = 0;
+        for (int k = 0; k < 3; ++k) n += std::fabs(x[k]) > hh[k];
+        return n;
+    };
     for (int i = 0; i < 40000; ++i) {
         Vec3 h, s;
         const double scale = pick({1.0, 1.0, 1e-80, 1e80});
@@ -590,12 +598,14 @@ TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
         }
         // The oracle at the radius and 1e-9 of the size either side of it: a verdict that changes
         // within that is a graze, where either answer is right.
-        auto truth = [&](double radius) {
-            P3 box_point;
-            const Real l = cast_oracle::ray_rounded_box(p3(s), p3(r), p3(h), Real(radius), box_point);
+        P3 box_point{};  // the oracle's box point nearest its entry at rho
+        auto truth = [&](double radius, P3& at) {
+            const Real l = cast_oracle::ray_rounded_box(p3(s), p3(r), p3(h), Real(radius), at);
             return l >= 0 && l <= 1 ? static_cast<double>(l) : -1.0;
         };
-        const double t = truth(rho), t_lo = truth(rho - 1e-9 * size), t_hi = truth(rho + 1e-9 * size);
+        P3 unused;
+        const double t = truth(rho, box_point), t_lo = truth(rho - 1e-9 * size, unused),
+                     t_hi = truth(rho + 1e-9 * size, unused);
         char what[200];
         std::snprintf(what, sizeof what, "seed %llu case %d h (%g %g %g) rho %g s (%g %g %g) r (%g %g %g)",
                       static_cast<unsigned long long>(seed), i, h.x, h.y, h.z, rho, s.x, s.y, s.z, r.x, r.y, r.z);
@@ -610,12 +620,26 @@ TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
         const double err = std::fabs(bc.toi - t) * length(r) / size;
         worst = std::fmax(worst, err);
         EXPECT_LE(err, 1e-12) << what << ": toi " << bc.toi << " oracle " << t;
+        // The normal: the oracle's, from the box point nearest its entry to the entry (the
+        // rounded box's outward normal there, whichever piece it is on); the point: on the
+        // ray at toi, and on the rounded box.
+        const P3 out = (p3(s) + Real(t) * p3(r)) - box_point;
+        const Vec3 tn{static_cast<double>(out.x), static_cast<double>(out.y), static_cast<double>(out.z)};
+        const double angle = angle_between(bc.normal, tn);
+        worst_angle = std::fmax(worst_angle, angle);
+        EXPECT_LE(angle, 1e-6) << what << ": normal (" << bc.normal.x << " " << bc.normal.y << " " << bc.normal.z << ")";
+        const double round_off = 1e-15 * (max_abs(s) + length(r) + size);
+        EXPECT_LE(length(bc.point - (s + bc.toi * r)), 100 * round_off) << what << ": the point is off the ray";
+        EXPECT_NEAR(length(bc.point - closed_form::box_nearest(h, bc.point)), rho, 1e-9 * size) << what;
+        corner_hits += out_axes(h, bc.point) == 3;
     }
     std::printf(
-        "[edge regions] %d entries in an edge's region, %d hits, %d grazes, %d declined; worst time %.2g of the size\n",
-        edge_entries, hits, grazes, declined, worst);
+        "[edge regions] %d entries in an edge's region, %d hits (%d on a corner's ball), %d grazes, %d declined; "
+        "worst time %.2g of the size, normal %.2g rad\n",
+        edge_entries, hits, corner_hits, grazes, declined, worst, worst_angle);
     EXPECT_GT(edge_entries, 8000) << "seed " << seed;
     EXPECT_GT(hits, edge_entries / 5) << "seed " << seed;
     EXPECT_LT(hits, edge_entries * 9 / 10) << "seed " << seed;
     EXPECT_LT(declined, edge_entries / 100) << "seed " << seed;
+    EXPECT_GT(corner_hits, hits / 50) << "seed " << seed;
 }
