@@ -331,6 +331,9 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     // coordinate past the box there) and wherever it meets that edge's cylinder, so within rho at
     // the plane between the two edges' regions too, where it equals the distance to the corner:
     // in the ball before the other cylinder. A corner's region tests its three capsules.
+    // The region and the corner come from p's signs, rounded by eps |s|: from a start far beyond
+    // the box (that rounding past rho) the choice is arbitrary, and so is the true entry within
+    // that rounding; the normal still opposes r (a ball's offset at its entry does).
     Vec3 corner;
     for (int k = 0; k < 3; ++k) corner[k] = p[k] >= 0 ? h[k] : -h[k];
     double best = INFINITY;
