@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Closed forms for the pairs whose cores are points or segments (spheres, capsules, points and
-// segments among themselves), and for a point core against a box (a sphere and a box): the
-// closest points with no GJK iteration. Internal.
+// segments among themselves), and for a point core against a box, a cylinder or a cone (a sphere
+// and one of those): the closest points with no GJK iteration. Internal.
 #pragma once
 
 #include "gjk/support_kernels.hpp"
@@ -85,6 +85,53 @@ inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 n0) {
 // non-zero component of t - p has the sign of its side: t - p separates whatever its rounding.
 inline Vec3 box_nearest(Vec3 h, Vec3 t) { return {clamp_to(t.x, h.x), clamp_to(t.y, h.y), clamp_to(t.z, h.z)}; }
 
+// Nearest point to t (its own frame) of a solid cylinder (radius r, |z| <= h) or cone (apex
+// (0, 0, h), base disk of radius r at z = -h): t itself inside. It lies in the axial half-plane
+// through t (turning a point of the solid about the axis into that half-plane brings it no
+// farther), where the section is a rectangle or a right triangle with a leg on the axis, and t is
+// never beyond that leg. Below a cone's base plane the nearest point is on the base disk or its
+// rim (the side's normals point up); above it, outside, on the slant from the apex to the rim.
+// The radial part is t's scaled by the section point's radius over t's, exactly 1 when only z
+// moves. unit: the outward normal there toward t, zero inside: a side's, slant's or end's own
+// normal, else (a rim, the apex) the section's gap direction. A direction taken from t - p would
+// carry the rounding of p (a point 1e-12 off a cylinder's side got an axis 1e-4 rad off its
+// normal, which then did not show the gap).
+inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit) {
+    const double rho = std::hypot(t.x, t.y);
+    double pr = rho < r ? rho : r, pz = clamp_to(t.z, h);  // the section's point: (radius, z)
+    double nr = rho - pr, nz = t.z - pz;                   // the section's outward direction (gap)
+    if (cone && t.z > -h) {
+        // The slant's outward unit normal (across, up) and unit direction from the apex (up,
+        // -across), in the section; formed first, as products of two lengths underflow below 1e-154.
+        const double l = std::hypot(2 * h, r), across = 2 * h / l, up = r / l;
+        if (up * (h - t.z) - across * rho >= 0) {
+            pr = rho, pz = t.z, nr = 0, nz = 0;  // inside
+        } else {
+            const double s = up * rho + across * (h - t.z);  // the foot's distance from the apex
+            const bool on_slant = s > 0 && s < l;
+            if (s <= 0)
+                pr = 0, pz = h;
+            else if (s >= l)
+                pr = r, pz = -h;
+            else
+                pr = s * up, pz = h - s * across;
+            nr = on_slant ? across : rho - pr;
+            nz = on_slant ? up : t.z - pz;
+            // At the rim or the apex the gap's direction must stay on its side of the slant's
+            // normal (its normal cone's edge): a gap near rounding can turn it past, and there the
+            // support jumps to the far end of the slant (the axis then showed no gap; a point
+            // 1e-12 of the size off a cone's rim at 1e4 missed by 8e-4 of the size).
+            const double past = nr * up - nz * across;  // < 0 beyond the slant's normal from the rim
+            if (!on_slant && (s >= l ? past < 0 : past > 0)) nr = across, nz = up;
+        }
+    }
+    const double m = std::hypot(nr, nz);
+    const Vec3 u = rho > 0 ? Vec3{t.x / rho, t.y / rho, 0} : Vec3{};
+    unit = m > 0 ? (nr / m) * u + Vec3{0, 0, nz / m} : Vec3{};
+    const double k = rho > 0 ? pr / rho : 0;
+    return {k * t.x, k * t.y, pz};
+}
+
 // |a| without overflow or underflow of its square (the cores may lie 1e100 apart, or 1e-200).
 inline double safe_length(Vec3 a) {
     const double nn = dot(a, a);
@@ -150,6 +197,22 @@ inline BallEntry ball_entry(Vec3 s, Vec3 r, double radius) {
     e.lambda = lambda;
     e.offset = w - h * u;
     return e;
+}
+
+// The nearest point to t of a box, cylinder or cone (a point core's partner in a closed form),
+// and the outward unit normal there toward t (zero inside).
+inline Vec3 solid_nearest(const Shape& s, Vec3 t, Vec3& unit) {
+    if (s.kind() == ShapeKind::Box) {
+        const Vec3 p = box_nearest(static_cast<const BoxShape&>(s).half_extents, t);
+        unit = safe_length(t - p) > 0 ? unit_of(t - p) : Vec3{};
+        return p;
+    }
+    if (s.kind() == ShapeKind::Cone) {
+        const auto& c = static_cast<const ConeShape&>(s);
+        return revolution_nearest(true, c.radius, c.half_height, t, unit);
+    }
+    const auto& c = static_cast<const CylinderShape&>(s);
+    return revolution_nearest(false, c.radius, c.half_height, t, unit);
 }
 
 }  // namespace kairos::closed_form

@@ -417,12 +417,13 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
 Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
 
 // Pairs with a closed form: cores that are points or segments (spheres, capsules, points,
-// segments), or a point core and a box (a sphere or a point and a box). No GJK loop, one
-// "iteration", exact to rounding.
+// segments), or a point core and a box, cylinder or cone. No GJK loop, one "iteration", exact to
+// rounding.
 inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core == Core::Segment; }
+inline bool solid_core(const CoreOf& c) { return c.core == Core::Box || c.core == Core::Revolution; }
 inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
-    return (line_core(ca) && line_core(cb)) || (ca.core == Core::Point && cb.core == Core::Box) ||
-           (ca.core == Core::Box && cb.core == Core::Point);
+    return (line_core(ca) && line_core(cb)) || (ca.core == Core::Point && solid_core(cb)) ||
+           (solid_core(ca) && cb.core == Core::Point);
 }
 
 // The cores' closest points in A's frame (the loop's LocalDistance, at the caller's scale);
@@ -430,25 +431,23 @@ inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
 LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
                                  const Transform& pose_b, Vec3& center_offset);
 
-// A point core and a box, in the box's frame: the box's nearest point to the point (exact); the
-// axis t - p separates whenever it is not zero (closed_form::box_nearest). When B is the box the
-// answer is brought back to A's frame, where A's core is the origin.
-LocalDistance point_box_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
-                                 const Transform& pose_b, Vec3& center_offset) {
-    const bool a_is_box = ca.core == Core::Box;
-    const Transform& box_pose = a_is_box ? pose_a : pose_b;
-    const Transform& point_pose = a_is_box ? pose_b : pose_a;
-    const Vec3 h = static_cast<const BoxShape&>(a_is_box ? *ca.shape : *cb.shape).half_extents;
-    const Vec3 t = box_pose.to_local_direction(point_pose.translation - box_pose.translation);
-    const Vec3 p = closed_form::box_nearest(h, t);
-    const Vec3 gap = t - p;  // box frame, from the box toward the point
+// A point core and a box, cylinder or cone, in the solid's frame: its nearest point to the point
+// (closed_form::solid_nearest); the axis t - p separates whenever it is not zero. When B is the
+// solid the answer is brought back to A's frame, where A's core is the origin.
+LocalDistance point_solid_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                                   Vec3& center_offset) {
+    const bool a_is_solid = ca.core != Core::Point;
+    const Transform& solid_pose = a_is_solid ? pose_a : pose_b;
+    const Transform& point_pose = a_is_solid ? pose_b : pose_a;
+    const Vec3 t = solid_pose.to_local_direction(point_pose.translation - solid_pose.translation);
+    Vec3 unit;  // the solid's frame, from it toward the point
+    const Vec3 p = closed_form::solid_nearest(a_is_solid ? *ca.shape : *cb.shape, t, unit);
     LocalDistance l{};
-    l.core = closed_form::safe_length(gap);
-    const Vec3 unit = l.core > 0 ? closed_form::unit_of(gap) : Vec3{};
+    l.core = closed_form::safe_length(t - p);
     l.intersecting = !(l.core > ca.radius + cb.radius);
     l.iterations = 1;
     l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
-    if (a_is_box) {
+    if (a_is_solid) {
         center_offset = t;
         l.point_a = p;
         l.point_b = t;
@@ -466,7 +465,7 @@ LocalDistance point_box_distance(const CoreOf& ca, const Transform& pose_a, cons
 LocalDistance closed_form_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
                                    const Transform& pose_b, Vec3& center_offset) {
     return line_core(ca) && line_core(cb) ? line_core_distance(ca, pose_a, cb, pose_b, center_offset)
-                                          : point_box_distance(ca, pose_a, cb, pose_b, center_offset);
+                                          : point_solid_distance(ca, pose_a, cb, pose_b, center_offset);
 }
 
 LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,

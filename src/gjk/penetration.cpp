@@ -61,10 +61,10 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
         const double end_room = hh - end_sign * t.z;
         double side_room;
         Vec3 side_dir;
-        if (cone) {
-            const double l = std::hypot(2 * hh, r);
-            side_dir = Vec3{(2 * hh / l) * u.x, (2 * hh / l) * u.y, r / l};
-            side_room = (r * hh - 2 * hh * rho - r * t.z) / l;
+        if (cone) {  // the normal's parts first: products of two lengths underflow below 1e-154
+            const double l = std::hypot(2 * hh, r), across = 2 * hh / l, up = r / l;
+            side_dir = Vec3{across * u.x, across * u.y, up};
+            side_room = up * (hh - t.z) - across * rho;
         } else {
             side_dir = u;
             side_room = r - rho;
@@ -144,8 +144,8 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     double total;
     const auto solid = [](const CoreOf& x) { return x.core == Core::Box || x.core == Core::Revolution; };
     const bool point_solid = (ca.core == Core::Point && solid(cb)) || (solid(ca) && cb.core == Core::Point);
-    // The closed form's own room decides too: GJK from a point 9e-8 inside a cone 3e-7 wide took
-    // the cores as apart by 6.5e-17, and the expansion then stopped on its guard.
+    // The room decides inside too, should it round otherwise than the cores' closed-form distance
+    // (a GJK loop from a point 9e-8 inside a cone 3e-7 wide once took the cores as apart).
     if (point_solid) depth = point_in_solid_depth(ca, pose_a, cb, pose_b);
     if (point_solid && (c.overlap || depth.depth > 0)) {
         depth.depth = std::fmax(depth.depth, 0.0);

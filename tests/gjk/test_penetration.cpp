@@ -873,7 +873,7 @@ double depth_by_meridian_scan(const Shape& solid, Vec3 p, Vec3 u) {
 // within 3e-4 of the depth there, and the two argument orders differed by 1e-4. Truth: a scan of
 // the support mapping over the plane of the axis and the point (depth_by_meridian_scan), plus the
 // radii. Points on the axis, anywhere inside, and 1e-6 of the size inside the boundary; needles,
-// flat and plain solids, scales 1e-3 .. 1e3, far from the origin, both orders (check). Off the axis
+// flat and plain solids, scales 1e-3 .. 1e3, 1e-160 and 1e90, far from the origin, both orders (check). Off the axis
 // the expansion on the same solid as a general shape (the hull of it with itself) must agree
 // wherever it converges.
 TEST(Penetration, PointCoresInsideCylindersAndConesTakeTheNearestBoundary) {
@@ -884,7 +884,10 @@ TEST(Penetration, PointCoresInsideCylindersAndConesTakeTheNearestBoundary) {
     int on_axis = 0, side = 0, end = 0, expansion_agrees = 0, expansion_cases = 0;
     double worst_expansion = 0;
     for (int i = 0; i < 600; ++i) {
-        const double scale = std::pow(10.0, 3 * static_cast<int>(rng() % 3) - 3);
+        // 1e-3 .. 1e3, and a tenth each at 1e-160 (products of two lengths underflow) and 1e90.
+        const double scale = i % 10 == 0   ? 1e-160
+                             : i % 10 == 5 ? 1e90
+                                           : std::pow(10.0, 3 * static_cast<int>(rng() % 3) - 3);
         const double aspect = std::pow(10.0, 3 * static_cast<int>(rng() % 3) - 3);  // needles .. flat
         const double r = scale * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect),
                      hh = scale * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
