@@ -627,7 +627,8 @@ TEST(BoxCast, RaysFromEdgeRegionsMatchEveryPieceOfTheRoundedBox) {
         const Vec3 tn{static_cast<double>(out.x), static_cast<double>(out.y), static_cast<double>(out.z)};
         const double angle = angle_between(bc.normal, tn);
         worst_angle = std::fmax(worst_angle, angle);
-        EXPECT_LE(angle, 1e-6) << what << ": normal (" << bc.normal.x << " " << bc.normal.y << " " << bc.normal.z << ")";
+        EXPECT_LE(angle, 1e-6) << what << ": normal (" << bc.normal.x << " " << bc.normal.y << " " << bc.normal.z
+                               << ")";
         const double round_off = 1e-15 * (max_abs(s) + length(r) + size);
         EXPECT_LE(length(bc.point - (s + bc.toi * r)), 100 * round_off) << what << ": the point is off the ray";
         EXPECT_NEAR(length(bc.point - closed_form::box_nearest(h, bc.point)), rho, 1e-9 * size) << what;

@@ -204,6 +204,40 @@ TEST(ClosedForms, EveryLineCorePairAgainstLongDoubleAndGjk) {
     EXPECT_LT(t.intersecting, t.cases * 9 / 10) << "seed " << seed;
 }
 
+// gjk_distance and gjk_intersect of a solid (s at xs) and a ball or point (b at xb), the solid
+// first when order is 0, else second; axis: intersect's, from the first shape toward the second.
+struct InOrder {
+    DistanceResult r;
+    bool hit;
+    Vec3 axis;
+};
+InOrder query_in_order(const Shape& s, const Transform& xs, const Shape& b, const Transform& xb, int order) {
+    InOrder q{};
+    q.r = order == 0 ? gjk_distance(s, xs, b, xb, 1e-10, 256) : gjk_distance(b, xb, s, xs, 1e-10, 256);
+    q.hit = order == 0 ? gjk_intersect(s, xs, b, xb, q.axis, nullptr) : gjk_intersect(b, xb, s, xs, q.axis, nullptr);
+    return q;
+}
+
+// The checks such a query shares: the distance against the long-double truth within tol (its
+// error over size returned), one iteration, the verdicts against the truth and the cores'
+// distance d_core (the ball's radius r), the witness points (compared in long double: squares
+// of 1e-162 underflow in double) and the distance's axis.
+template <class Fail>
+double judge(const InOrder& q, Real truth, Real d_core, double r, double tol, double size, Fail&& fail) {
+    const DistanceResult& res = q.r;
+    const double err = std::fabs(double(Real(res.distance) - truth));
+    if (!(err <= tol)) fail("distance off the long-double truth", err / size);
+    if (res.iterations != 1) fail("a closed-form pair ran the GJK loop", res.iterations);
+    if (truth > tol && (res.intersecting || q.hit)) fail("intersecting although apart", double(truth));
+    if (d_core < Real(r) - Real(tol) && (!res.intersecting || !q.hit)) fail("apart although overlapping", double(d_core));
+    if (!res.intersecting) {
+        if (!(std::fabs(double(dist(lift(res.point_b), lift(res.point_a)) - Real(res.distance))) <= tol))
+            fail("witness points", 0);
+        if (res.distance > tol && !(dot(res.axis, res.point_b - res.point_a) > 0)) fail("axis from A toward B", 0);
+    }
+    return err / size;
+}
+
 // A sphere (or a point, or a rounded box's corner) against a box, in both orders: the box placed at
 // random, the ball's centre put at a face, an edge or a corner region at gaps from 1e-12 to 1e-2
 // of the size on either side, or at random. Truth: the centre clamped to the box in long double
@@ -257,31 +291,18 @@ TEST(ClosedForms, BallAgainstBoxAgainstLongDoubleAndGjk) {
             const double size = std::max({max_abs(h), max_abs(xbox.translation), max_abs(xb.translation), radius});
             const double tol = 1e-12 * size;
             for (int order = 0; order < 2; ++order) {
-                const DistanceResult r = order == 0 ? gjk_distance(box, xbox, b, xb, 1e-10, 256)
-                                                    : gjk_distance(b, xb, box, xbox, 1e-10, 256);
-                Vec3 axis{};
-                const bool hit = order == 0 ? gjk_intersect(box, xbox, b, xb, axis, nullptr)
-                                            : gjk_intersect(b, xb, box, xbox, axis, nullptr);
+                const InOrder q = query_in_order(box, xbox, b, xb, order);
+                const DistanceResult& r = q.r;
+                const bool hit = q.hit;
+                const Vec3 axis = q.axis;
                 ++cases;
                 auto fail = [&](const char* rule, double x) {
                     if (++failures <= 8)
                         ADD_FAILURE() << rule << " (" << x << "); truth " << double(truth) << ", got " << r.distance
                                       << "; scale " << scale << " case " << i << " order " << order << " seed " << seed;
                 };
-                const double err = std::fabs(double(Real(r.distance) - truth));
-                worst = std::max(worst, err / size);
-                if (!(err <= tol)) fail("distance off the long-double truth", err / size);
-                if (r.iterations != 1) fail("a closed-form pair ran the GJK loop", r.iterations);
-                if (truth > tol && (r.intersecting || hit)) fail("intersecting although apart", double(truth));
-                if (truth == 0 && std::sqrt(sq) < Real(radius) - Real(tol) && (!r.intersecting || !hit))
-                    fail("apart although overlapping", 0);
+                worst = std::max(worst, judge(q, truth, std::sqrt(sq), radius, tol, size, fail));
                 if (r.intersecting) ++intersecting;
-                if (!r.intersecting) {
-                    // In long double: the squares of 1e-162 underflow in double.
-                    if (!(std::fabs(double(dist(lift(r.point_b), lift(r.point_a)) - Real(r.distance))) <= tol))
-                        fail("witness points", 0);
-                    if (r.distance > tol && !(dot(r.axis, r.point_b - r.point_a) > 0)) fail("axis from B toward A", 0);
-                }
                 if (!hit) {
                     // The axis (from A toward B) separates: the box's shadow from its own frame.
                     const Vec3 n = order == 0 ? axis : -axis;  // from the box toward the ball
@@ -423,11 +444,10 @@ TEST(ClosedForms, BallAgainstCylinderAndConeAgainstLongDoubleAndGjk) {
             const double size = std::max({r, hh, max_abs(xs.translation), max_abs(xb.translation), radius});
             const double tol = 1e-12 * size;
             for (int order = 0; order < 2; ++order) {
-                const DistanceResult res = order == 0 ? gjk_distance(solid, xs, b, xb, 1e-10, 256)
-                                                      : gjk_distance(b, xb, solid, xs, 1e-10, 256);
-                Vec3 axis{};
-                const bool hit = order == 0 ? gjk_intersect(solid, xs, b, xb, axis, nullptr)
-                                            : gjk_intersect(b, xb, solid, xs, axis, nullptr);
+                const InOrder q = query_in_order(solid, xs, b, xb, order);
+                const DistanceResult& res = q.r;
+                const bool hit = q.hit;
+                const Vec3 axis = q.axis;
                 ++cases;
                 auto fail = [&](const char* rule, double x) {
                     if (++failures <= 8)
@@ -435,20 +455,8 @@ TEST(ClosedForms, BallAgainstCylinderAndConeAgainstLongDoubleAndGjk) {
                                       << "; " << (is_cone ? "cone" : "cylinder") << " feature " << feature << " scale "
                                       << scale << " case " << i << " order " << order << " seed " << seed;
                 };
-                const double err = std::fabs(double(Real(res.distance) - truth));
-                worst = std::max(worst, err / size);
-                if (!(err <= tol)) fail("distance off the long-double truth", err / size);
-                if (res.iterations != 1) fail("a closed-form pair ran the GJK loop", res.iterations);
-                if (truth > tol && (res.intersecting || hit)) fail("intersecting although apart", double(truth));
-                if (d_core < Real(radius) - Real(tol) && (!res.intersecting || !hit))
-                    fail("apart although overlapping", double(d_core));
+                worst = std::max(worst, judge(q, truth, d_core, radius, tol, size, fail));
                 if (res.intersecting) ++intersecting;
-                if (!res.intersecting) {
-                    if (!(std::fabs(double(dist(lift(res.point_b), lift(res.point_a)) - Real(res.distance))) <= tol))
-                        fail("witness points", 0);
-                    if (res.distance > tol && !(dot(res.axis, res.point_b - res.point_a) > 0))
-                        fail("axis from A toward B", 0);
-                }
                 if (!hit) {
                     // The axis (from A toward B) separates: the solid's support along it.
                     const Vec3 n = order == 0 ? axis : -axis;  // from the solid toward the ball
