@@ -85,6 +85,15 @@ inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 n0) {
 // non-zero component of t - p has the sign of its side: t - p separates whatever its rounding.
 inline Vec3 box_nearest(Vec3 h, Vec3 t) { return {clamp_to(t.x, h.x), clamp_to(t.y, h.y), clamp_to(t.z, h.z)}; }
 
+// A cone's slant length l = |(r, 2h)| and its outward unit normal (across, up) = (2h, r) / l in the
+// axial section. Formed from r and 2h over the larger of them: of subnormal ones (a cone 5e-324
+// wide) the hypotenuse itself has a few bits, and (2h / l, r / l) came out as (1, 0.5).
+inline double slant_normal(double r, double h, double& across, double& up) {
+    const double big = std::fmax(2 * h, r), a = 2 * h / big, b = r / big, m = std::hypot(a, b);
+    across = a / m, up = b / m;
+    return m * big;
+}
+
 // Nearest point to t (its own frame) of a solid cylinder (radius r, |z| <= h) or cone (apex
 // (0, 0, h), base disk of radius r at z = -h): t itself inside. It lies in the axial half-plane
 // through t (turning a point of the solid about the axis into that half-plane brings it no
@@ -103,7 +112,8 @@ inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit
     if (cone && t.z > -h) {
         // The slant's outward unit normal (across, up) and unit direction from the apex (up,
         // -across), in the section; formed first, as products of two lengths underflow below 1e-154.
-        const double l = std::hypot(2 * h, r), across = 2 * h / l, up = r / l;
+        double across, up;
+        const double l = slant_normal(r, h, across, up);
         if (up * (h - t.z) - across * rho >= 0) {
             pr = rho, pz = t.z, nr = 0, nz = 0;  // inside
         } else {

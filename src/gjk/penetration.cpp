@@ -9,6 +9,7 @@
 #include <memory>
 #include <type_traits>
 
+#include "gjk/closed_forms.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/expander.hpp"
 #include "gjk/support_kernels.hpp"
@@ -62,7 +63,8 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
         double side_room;
         Vec3 side_dir;
         if (cone) {  // the normal's parts first: products of two lengths underflow below 1e-154
-            const double l = std::hypot(2 * hh, r), across = 2 * hh / l, up = r / l;
+            double across, up;
+            closed_form::slant_normal(r, hh, across, up);
             side_dir = Vec3{across * u.x, across * u.y, up};
             side_room = up * (hh - t.z) - across * rho;
         } else {
