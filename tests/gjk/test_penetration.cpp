@@ -969,6 +969,54 @@ TEST(Penetration, PointCoresInsideCylindersAndConesTakeTheNearestBoundary) {
     EXPECT_GT(expansion_agrees, expansion_cases / 3) << "seed " << seed;
 }
 
+// Cylinders and cones of subnormal size (5e-324 .. 1e-310) against a unit ball, centred on them
+// and beside them. The slant's normal came from hypot(2h, r) of subnormals, which has a few bits:
+// signed_distance's axis was (1 0 0.5), not unit (fuzz_queries). Truth: the solid is a point
+// within rounding of the unit ball's size, so the signed distance is |c| - 1 for the ball's centre
+// c in the solid's frame, the axis unit and along c when c is not 0, in both argument orders, all
+// within a few rounding errors of the ball's size.
+TEST(Penetration, SubnormalCylindersAndConesGiveAUnitAxis) {
+    const uint64_t seed = 25012;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, inside = 0, apart = 0, failures = 0;
+    const double sizes[] = {4.9406564584124654e-324, 1e-320, 3e-315, 1e-310};
+    for (int i = 0; i < 400; ++i) {
+        const double r = sizes[rng() % 4], hh = sizes[rng() % 4];
+        const bool is_cone = i % 2 == 1;
+        const CylinderShape cyl(r, hh);
+        const ConeShape cone(r, hh);
+        const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
+        const SphereShape ball(1);
+        // The ball's centre: on the solid, or at 0.5 .. 2 from it along a random direction.
+        const double gap = i % 8 < 2 ? 0.0 : 0.5 + 1.5 * u(rng);
+        const Vec3 dir = normalized_or(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}, Vec3{1, 0, 0});
+        const Transform xs = pose(Vec3{u(rng), -u(rng), u(rng)}, random_quat(rng));
+        const Transform xb = pose(xs.translation + gap * dir, random_quat(rng));
+        for (int order = 0; order < 2; ++order) {
+            const DistanceResult d = order ? signed_distance(ball, xb, solid, xs, 1e-10, 256)
+                                           : signed_distance(solid, xs, ball, xb, 1e-10, 256);
+            ++cases;
+            (d.distance < 0 ? inside : apart) += 1;
+            const double length = std::sqrt(dot(d.axis, d.axis));
+            // The axis from the solid toward the ball's centre, in the order asked.
+            const double along = (order ? -1 : 1) * dot(d.axis, dir);
+            const bool ok = std::fabs(d.distance - (gap - 1)) <= 1e-14 && std::fabs(length - 1) <= 1e-14 &&
+                            (gap == 0 || along >= 1 - 1e-12);
+            if (!ok) {
+                ++failures;
+                ADD_FAILURE() << "seed " << seed << " case " << i << (is_cone ? " cone" : " cylinder") << " r " << r
+                              << " h " << hh << " gap " << gap << " order " << order << ": distance " << d.distance
+                              << ", |axis| " << length << ", axis along the centres " << along;
+            }
+        }
+    }
+    std::printf("subnormal cylinders and cones: %d signed distances, %d overlapping, %d apart, %d failures\n", cases,
+                inside, apart, failures);
+    EXPECT_GT(inside, 150) << "seed " << seed;
+    EXPECT_GT(apart, 150) << "seed " << seed;
+}
+
 // Flat cones (1e3 .. 1e4 times wider than thick) against capsules sunk into their slanted top:
 // the expansion's nearest face may end with the origin's nearest point on an edge, whose
 // direction the stopping rules never tested (one argument order reported a depth 1.2 % short
