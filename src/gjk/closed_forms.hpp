@@ -85,13 +85,32 @@ inline Axis separating_axis(double ha, Vec3 c, Vec3 d, double hb, Vec3 n0) {
 // non-zero component of t - p has the sign of its side: t - p separates whatever its rounding.
 inline Vec3 box_nearest(Vec3 h, Vec3 t) { return {clamp_to(t.x, h.x), clamp_to(t.y, h.y), clamp_to(t.z, h.z)}; }
 
-// A cone's slant length l = |(r, 2h)| and its outward unit normal (across, up) = (2h, r) / l in the
-// axial section. Formed from r and 2h over the larger of them: of subnormal ones (a cone 5e-324
-// wide) the hypotenuse itself has a few bits, and (2h / l, r / l) came out as (1, 0.5).
-inline double slant_normal(double r, double h, double& across, double& up) {
+// A cone's slant in its axial section (rho, z), from the rim (r, -h) to the apex (0, h): the
+// outward unit normal (across, up) = (2h, r) / length, formed from r and 2h over the larger of
+// them (of subnormal ones, a cone 5e-324 wide, the hypotenuse itself has a few bits, and the
+// normal came out as (1, 0.5)); its parts first, as products of two lengths underflow below 1e-154.
+struct Slant {
+    double across, up, length;
+    // The section point's room to the slant's line, >= 0 on the axis's side.
+    double room(double rho, double z, double h) const { return up * (h - z) - across * rho; }
+};
+inline Slant slant_of(double r, double h) {
     const double big = std::fmax(2 * h, r), a = 2 * h / big, b = r / big, m = std::hypot(a, b);
-    across = a / m, up = b / m;
-    return m * big;
+    return {a / m, b / m, m * big};
+}
+
+// A cylinder's or cone's dimensions; s is one of them.
+struct Revolution {
+    bool cone;
+    double radius, half_height;
+};
+inline Revolution revolution_of(const Shape& s) {
+    if (s.kind() == ShapeKind::Cone) {
+        const auto& c = static_cast<const ConeShape&>(s);
+        return {true, c.radius, c.half_height};
+    }
+    const auto& c = static_cast<const CylinderShape&>(s);
+    return {false, c.radius, c.half_height};
 }
 
 // Nearest point to t (its own frame) of a solid cylinder (radius r, |z| <= h) or cone (apex
@@ -110,11 +129,10 @@ inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit
     double pr = rho < r ? rho : r, pz = clamp_to(t.z, h);  // the section's point: (radius, z)
     double nr = rho - pr, nz = t.z - pz;                   // the section's outward direction (gap)
     if (cone && t.z > -h) {
-        // The slant's outward unit normal (across, up) and unit direction from the apex (up,
-        // -across), in the section; formed first, as products of two lengths underflow below 1e-154.
-        double across, up;
-        const double l = slant_normal(r, h, across, up);
-        if (up * (h - t.z) - across * rho >= 0) {
+        // The slant's outward unit normal (across, up) and unit direction from the apex (up, -across).
+        const Slant slant = slant_of(r, h);
+        const double across = slant.across, up = slant.up, l = slant.length;
+        if (slant.room(rho, t.z, h) >= 0) {
             pr = rho, pz = t.z, nr = 0, nz = 0;  // inside
         } else {
             const double s = up * rho + across * (h - t.z);  // the foot's distance from the apex
@@ -217,12 +235,8 @@ inline Vec3 solid_nearest(const Shape& s, Vec3 t, Vec3& unit) {
         unit = safe_length(t - p) > 0 ? unit_of(t - p) : Vec3{};
         return p;
     }
-    if (s.kind() == ShapeKind::Cone) {
-        const auto& c = static_cast<const ConeShape&>(s);
-        return revolution_nearest(true, c.radius, c.half_height, t, unit);
-    }
-    const auto& c = static_cast<const CylinderShape&>(s);
-    return revolution_nearest(false, c.radius, c.half_height, t, unit);
+    const Revolution v = revolution_of(s);
+    return revolution_nearest(v.cone, v.radius, v.half_height, t, unit);
 }
 
 }  // namespace kairos::closed_form

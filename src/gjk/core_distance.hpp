@@ -23,8 +23,17 @@ struct CoreDistance {
     Termination termination = Termination::None;
 };
 
-// Whether core_distance has a closed form for the pair (points and segments among themselves, a
-// point and a box).
+// A point core (a ball's centre, a point) and a box, cylinder or cone core, either order: their
+// distance and the point's depth inside have closed forms (closed_forms.hpp, penetration.cpp).
+inline bool point_and_solid(const kernels::CoreOf& ca, const kernels::CoreOf& cb) {
+    const auto solid = [](const kernels::CoreOf& x) {
+        return x.core == kernels::Core::Box || x.core == kernels::Core::Revolution;
+    };
+    return (ca.core == kernels::Core::Point && solid(cb)) || (solid(ca) && cb.core == kernels::Core::Point);
+}
+
+// Whether core_distance has a closed form for the pair (points and segments among themselves,
+// point_and_solid).
 bool closed_form_cores(const kernels::CoreOf& ca, const kernels::CoreOf& cb);
 
 // The closed forms for the pairs that have them, else GJK on the cores with no margin (held, may

@@ -420,10 +420,8 @@ Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation *
 // segments), or a point core and a box, cylinder or cone. No GJK loop, one "iteration", exact to
 // rounding.
 inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core == Core::Segment; }
-inline bool solid_core(const CoreOf& c) { return c.core == Core::Box || c.core == Core::Revolution; }
 inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
-    return (line_core(ca) && line_core(cb)) || (ca.core == Core::Point && solid_core(cb)) ||
-           (solid_core(ca) && cb.core == Core::Point);
+    return (line_core(ca) && line_core(cb)) || point_and_solid(ca, cb);
 }
 
 // The cores' closest points in A's frame (the loop's LocalDistance, at the caller's scale);

@@ -49,11 +49,9 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
         out_dir[axis] = side;
         face[axis] = side * h[axis];
     } else {
-        const bool cone = solid.kind() == ShapeKind::Cone;
-        const double r =
-            cone ? static_cast<const ConeShape&>(solid).radius : static_cast<const CylinderShape&>(solid).radius;
-        const double hh = cone ? static_cast<const ConeShape&>(solid).half_height
-                               : static_cast<const CylinderShape&>(solid).half_height;
+        const closed_form::Revolution v = closed_form::revolution_of(solid);
+        const bool cone = v.cone;
+        const double r = v.radius, hh = v.half_height;
         const double rho = std::hypot(t.x, t.y);
         const Vec3 u = rho > 0 ? Vec3{t.x / rho, t.y / rho, 0} : Vec3{1, 0, 0};  // on the axis: any
         // The end: the cylinder's nearer one, the cone's base at z = -h. The side: a cone's slant
@@ -62,11 +60,10 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
         const double end_room = hh - end_sign * t.z;
         double side_room;
         Vec3 side_dir;
-        if (cone) {  // the normal's parts first: products of two lengths underflow below 1e-154
-            double across, up;
-            closed_form::slant_normal(r, hh, across, up);
-            side_dir = Vec3{across * u.x, across * u.y, up};
-            side_room = up * (hh - t.z) - across * rho;
+        if (cone) {
+            const closed_form::Slant slant = closed_form::slant_of(r, hh);
+            side_dir = Vec3{slant.across * u.x, slant.across * u.y, slant.up};
+            side_room = slant.room(rho, t.z, hh);
         } else {
             side_dir = u;
             side_room = r - rho;
@@ -144,8 +141,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     }
     CoreDepth depth;
     double total;
-    const auto solid = [](const CoreOf& x) { return x.core == Core::Box || x.core == Core::Revolution; };
-    const bool point_solid = (ca.core == Core::Point && solid(cb)) || (solid(ca) && cb.core == Core::Point);
+    const bool point_solid = point_and_solid(ca, cb);
     // The room decides inside too, should it round otherwise than the cores' closed-form distance
     // (a GJK loop from a point 9e-8 inside a cone 3e-7 wide once took the cores as apart).
     if (point_solid) depth = point_in_solid_depth(ca, pose_a, cb, pose_b);
