@@ -153,9 +153,9 @@ inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit
             if (!on_slant && (s >= l ? past < 0 : past > 0)) nr = across, nz = up;
         }
     }
-    const double m = std::hypot(nr, nz);
-    const Vec3 u = rho > 0 ? Vec3{t.x / rho, t.y / rho, 0} : Vec3{};
-    unit = m > 0 ? (nr / m) * u + Vec3{0, 0, nz / m} : Vec3{};
+    // Both directions over their larger part first: t / rho, of subnormal parts, was (1 1 0).
+    const Planar radial = radial_unit(t.x, t.y), gap = radial_unit(nr, nz);
+    unit = gap.x * Vec3{radial.x, radial.y, 0} + Vec3{0, 0, gap.y};
     const double k = rho > 0 ? pr / rho : 0;
     return {k * t.x, k * t.y, pz};
 }

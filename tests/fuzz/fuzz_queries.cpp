@@ -523,7 +523,9 @@ void query_intersect(Input& in, const Posed& a, const Posed& b) {
 // ---- Casts -------------------------------------------------------------------------------------
 
 // Fields every successful cast result must have; false when non-finite numbers are tolerated.
-bool check_cast_fields(const kairos_cast_result& r, bool moderate_inputs, const char* what) {
+// where(): the inputs, for the report (a std::string), built only on a violation.
+template <class Where>
+bool check_cast_fields(const kairos_cast_result& r, bool moderate_inputs, const char* what, Where&& where) {
     check_termination(r.termination, what);
     if (r.hit != 0 && r.hit != 1) violation("%s: hit is %d", what, r.hit);
     if (!finite_or_report(std::isfinite(r.toi), moderate_inputs, what)) return false;
@@ -533,7 +535,7 @@ bool check_cast_fields(const kairos_cast_result& r, bool moderate_inputs, const 
         return true;
     }
     if (!finite_or_report(finite(r.point) && finite(r.normal), moderate_inputs, what)) return false;
-    if (!unit(r.normal)) violation("%s: hit with normal %s, not unit", what, show(r.normal));
+    if (!unit(r.normal)) violation("%s: hit with normal %s, not unit; %s", what, show(r.normal), where().c_str());
     return true;
 }
 
@@ -598,7 +600,11 @@ void query_ray(Input& in, const Posed& s) {
         return;
     }
     const bool moderate_inputs = s.model().moderate && s.pose.moderate && moderate(origin) && moderate(t);
-    if (!check_cast_fields(r, moderate_inputs, "kairos_ray_cast")) return;
+    if (!check_cast_fields(r, moderate_inputs, "kairos_ray_cast", [&] {
+            return std::string("origin ") + show(origin) + ", translation " + show(t) + ", " + describe(s.model()) +
+                   " at " + show(s.pose.pose);
+        }))
+        return;
     {
         const real reach = inner_radius(s.model()) < 0
                                ? -1
@@ -684,7 +690,10 @@ void query_shape_cast(Input& in, const Posed& a, const Posed& b) {
         return;
     }
     const bool moderate_inputs = inputs_moderate(a, b) && moderate(ta) && moderate(tb);
-    if (!check_cast_fields(r, moderate_inputs, "kairos_shape_cast")) return;
+    if (!check_cast_fields(r, moderate_inputs, "kairos_shape_cast", [&] {
+            return std::string("A moves ") + show(ta) + ", B moves " + show(tb) + "; " + scene(a, b);
+        }))
+        return;
     const Vr rel = to_real(tb) - to_real(ta);
     const real size = pair_size(a, b, to_real(ta)) + norm(to_real(tb));
     const real slack = (2 * real(settings.tolerance) + 1e-6L) * size + pair_slack(a, b, size);
@@ -783,7 +792,11 @@ void query_motion_cast(Input& in, const Posed& a, const Posed& b) {
         return;
     }
     const bool moderate_inputs = inputs_moderate(a, b) && a1.moderate && b_end.moderate;
-    if (!check_cast_fields(r, moderate_inputs, "kairos_motion_cast")) return;
+    if (!check_cast_fields(r, moderate_inputs, "kairos_motion_cast", [&] {
+            return "A " + describe(a.model()) + " " + show(ma.start) + " -> " + show(ma.end) + ", B " +
+                   describe(b.model()) + " " + show(mb.start) + " -> " + show(mb.end);
+        }))
+        return;
     {
         const Vr p0 = to_real(mb.start.position) - to_real(ma.start.position);
         const Vr dv = (to_real(mb.end.position) - to_real(mb.start.position)) -

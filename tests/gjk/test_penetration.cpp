@@ -969,17 +969,20 @@ TEST(Penetration, PointCoresInsideCylindersAndConesTakeTheNearestBoundary) {
     EXPECT_GT(expansion_agrees, expansion_cases / 3) << "seed " << seed;
 }
 
-// Cylinders and cones of subnormal size (5e-324 .. 1e-310) against a unit ball, centred on them
-// and beside them. The slant's normal came from hypot(2h, r) of subnormals, which has a few bits:
-// signed_distance's axis was (1 0 0.5), not unit (fuzz_queries). Truth: the solid is a point
-// within rounding of the unit ball's size, so the signed distance is |c| - 1 for the ball's centre
-// c in the solid's frame, the axis unit and along c when c is not 0, in both argument orders, all
-// within a few rounding errors of the ball's size.
+// Cylinders and cones of subnormal size (5e-324 .. 1e-310) against a unit ball: centred on them,
+// centred a subnormal offset away, and beside them. Two findings of fuzz_queries: the slant's
+// normal from hypot(2h, r) of subnormals, which has a few bits, made signed_distance's axis
+// (1 0 0.5); the radial direction t / |t| of a centre a subnormal offset off the axis was (1 1 0)
+// (a motion cast's normal). Truth: the solid is a point within rounding of the unit ball's size,
+// so the signed distance is |c| - 1 for the ball's centre c in the solid's frame, the axis unit and
+// along c when c is the ball's size away, in both argument orders, all within a few rounding
+// errors of the ball's size. At the subnormal offsets a point partner too: its distance within a
+// few of the sizes, its axis unit.
 TEST(Penetration, SubnormalCylindersAndConesGiveAUnitAxis) {
     const uint64_t seed = 25012;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    int cases = 0, inside = 0, apart = 0, failures = 0;
+    int cases = 0, inside = 0, apart = 0, offset_cases = 0, failures = 0;
     const double sizes[] = {4.9406564584124654e-324, 1e-320, 3e-315, 1e-310};
     for (int i = 0; i < 400; ++i) {
         const double r = sizes[rng() % 4], hh = sizes[rng() % 4];
@@ -988,33 +991,47 @@ TEST(Penetration, SubnormalCylindersAndConesGiveAUnitAxis) {
         const ConeShape cone(r, hh);
         const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
         const SphereShape ball(1);
-        // The ball's centre: on the solid, or at 0.5 .. 2 from it along a random direction.
-        const double gap = i % 8 < 2 ? 0.0 : 0.5 + 1.5 * u(rng);
+        const PointShape point;
+        // The ball's centre: on the solid, a subnormal offset from it (the solid at the origin, as
+        // offsets vanish beside larger coordinates), or 0.5 .. 2 from it, along a random direction.
+        const int kind = i % 8 < 2 ? 0 : i % 8 < 4 ? 1 : 2;
+        const double gap = kind == 0 ? 0.0 : kind == 1 ? sizes[rng() % 4] * (1 + 3 * u(rng)) : 0.5 + 1.5 * u(rng);
         const Vec3 dir = normalized_or(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}, Vec3{1, 0, 0});
-        const Transform xs = pose(Vec3{u(rng), -u(rng), u(rng)}, random_quat(rng));
+        const Transform xs = pose(kind == 1 ? Vec3{} : Vec3{u(rng), -u(rng), u(rng)}, random_quat(rng));
         const Transform xb = pose(xs.translation + gap * dir, random_quat(rng));
         for (int order = 0; order < 2; ++order) {
+            const auto report = [&](const char* partner, const DistanceResult& d) {
+                ++failures;
+                ADD_FAILURE() << "seed " << seed << " case " << i << (is_cone ? " cone" : " cylinder") << " r " << r
+                              << " h " << hh << " gap " << gap << " order " << order << " against " << partner
+                              << ": distance " << d.distance << ", axis (" << d.axis.x << " " << d.axis.y << " "
+                              << d.axis.z << ")";
+            };
             const DistanceResult d = order ? signed_distance(ball, xb, solid, xs, 1e-10, 256)
                                            : signed_distance(solid, xs, ball, xb, 1e-10, 256);
             ++cases;
             (d.distance < 0 ? inside : apart) += 1;
-            const double length = std::sqrt(dot(d.axis, d.axis));
             // The axis from the solid toward the ball's centre, in the order asked.
             const double along = (order ? -1 : 1) * dot(d.axis, dir);
-            const bool ok = std::fabs(d.distance - (gap - 1)) <= 1e-14 && std::fabs(length - 1) <= 1e-14 &&
-                            (gap == 0 || along >= 1 - 1e-12);
-            if (!ok) {
-                ++failures;
-                ADD_FAILURE() << "seed " << seed << " case " << i << (is_cone ? " cone" : " cylinder") << " r " << r
-                              << " h " << hh << " gap " << gap << " order " << order << ": distance " << d.distance
-                              << ", |axis| " << length << ", axis along the centres " << along;
+            if (!(std::fabs(d.distance - (gap - 1)) <= 1e-14 && std::fabs(length(d.axis) - 1) <= 1e-14 &&
+                  (kind != 2 || along >= 1 - 1e-12)))
+                report("the ball", d);
+            if (kind == 1) {
+                const DistanceResult e = order ? signed_distance(point, xb, solid, xs, 1e-10, 256)
+                                               : signed_distance(solid, xs, point, xb, 1e-10, 256);
+                ++offset_cases;
+                if (!(std::fabs(e.distance) <= 8 * (r + hh + gap) && std::fabs(length(e.axis) - 1) <= 1e-14))
+                    report("a point", e);
             }
         }
     }
-    std::printf("subnormal cylinders and cones: %d signed distances, %d overlapping, %d apart, %d failures\n", cases,
-                inside, apart, failures);
-    EXPECT_GT(inside, 150) << "seed " << seed;
-    EXPECT_GT(apart, 150) << "seed " << seed;
+    std::printf(
+        "subnormal cylinders and cones: %d signed distances against a ball, %d overlapping, %d apart; %d against "
+        "a point a subnormal offset away; %d failures\n",
+        cases, inside, apart, offset_cases, failures);
+    EXPECT_GT(inside, 400) << "seed " << seed;
+    EXPECT_GT(apart, 200) << "seed " << seed;
+    EXPECT_GT(offset_cases, 150) << "seed " << seed;
 }
 
 // Flat cones (1e3 .. 1e4 times wider than thick) against capsules sunk into their slanted top:
