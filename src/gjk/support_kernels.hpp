@@ -33,7 +33,7 @@ struct SmallHullSupport {
     const Vec3* v;
     const double* xyz;
     size_t n;
-    Vec3 operator()(Vec3 d) const { return v[small_hull::best_vertex(v, xyz, n, d)]; }
+    Vec3 operator()(Vec3 d) const { return small_hull::best_point(v, xyz, n, d); }
 };
 // A cylinder or a cone: no switch on the kind per call (the flag is the same on every call, so
 // its branch predicts). Curved: its points are rounded, as GenericSupport's may be.

@@ -71,7 +71,7 @@ size_t best_of(const std::vector<Vec3>& vertices, size_t n, Vec3 d, double& out_
 Vec3 ConvexHullShape::support(Vec3 d) const {
     if (vertices.empty()) return {};
     double best_score = 0;
-    if (!soa.empty()) return vertices[small_hull::best_vertex(vertices.data(), soa.data(), vertices.size(), d)];
+    if (!soa.empty()) return small_hull::best_point(vertices.data(), soa.data(), vertices.size(), d);
     if (neighbor_offsets.empty()) return vertices[best_of(vertices, vertices.size(), d, best_score)];
     // Steepest ascent over the edge graph: on a convex polytope a vertex with no better
     // neighbour maximises the linear function d.x globally. Scores only increase, so it stops.

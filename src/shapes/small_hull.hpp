@@ -96,4 +96,17 @@ inline size_t best_vertex(const Vec3* v, const double* xyz, size_t n, Vec3 d) {
 #endif
 }
 
+// The best vertex itself (the same point, bit for bit). Under AVX2 it is read from the copy just
+// scanned: the vertex's own row was not read by the scan, and over a set of casts between
+// different hulls that load missed the cache (the hottest instruction of a hull32 cast's loop).
+inline Vec3 best_point(const Vec3* v, const double* xyz, size_t n, Vec3 d) {
+#if KAIROS_SMALL_HULL_X86
+    if (has_avx2()) {
+        const size_t i = best_vertex_avx2(xyz, n, d.x, d.y, d.z), p = padded(n);
+        return {xyz[i], xyz[p + i], xyz[2 * p + i]};
+    }
+#endif
+    return v[best_vertex(v, xyz, n, d)];
+}
+
 }  // namespace kairos::small_hull
