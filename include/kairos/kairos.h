@@ -200,7 +200,9 @@ KAIROS_API int32_t kairos_shape_minkowski_sum(const kairos_shape* a, const kairo
 /* Convex hull of the union of a and b (both in the same local frame). Retains a and b. */
 KAIROS_API int32_t kairos_shape_hull(const kairos_shape* a, const kairos_shape* b, kairos_shape** out);
 /* s mapped by x -> linear * x + translation. linear is a row-major 3x3, finite and invertible
- * (|det| > 1e-12 times the product of its row lengths); it may scale, shear or mirror. Retains s. */
+ * (|det| > 1e-12 times the product of its row lengths); it may scale, shear or mirror. Retains s.
+ * When linear is a rotation (orthonormal to 2^-48, det > 0) queries answer s itself at the composed
+ * pose, with s's closed forms and speed; other maps go through a generic support. */
 KAIROS_API int32_t kairos_shape_transformed(const kairos_shape* s, const double linear[9],
                                             kairos_vec3 translation, kairos_shape** out);
 /* Adds one reference. NULL is ignored. Thread safe. */

@@ -167,6 +167,10 @@ CastResult closed_result(const cast_detail::BoxCast& bc, const Transform& pose, 
 
 CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3 translation, double tolerance,
                     uint32_t max_iterations) {
+    if (rigidly_placed(shape)) {
+        const PlacedShape u = unwrap_rigid(shape, pose);
+        return ray_cast(*u.shape, u.pose, origin, translation, tolerance, max_iterations);
+    }
     if (max_iterations == 0) max_iterations = 1;
     const Vec3 s = pose.apply_inverse(origin);
     const Vec3 r = pose.to_local_direction(translation);
@@ -238,6 +242,11 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
 CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_a, const Shape& b,
                       const Transform& pose_b, Vec3 translation_b, double tolerance, uint32_t max_iterations,
                       bool overlap_normal) {
+    if (rigidly_placed(a) || rigidly_placed(b)) {
+        const PlacedShape ua = unwrap_rigid(a, pose_a), ub = unwrap_rigid(b, pose_b);
+        return shape_cast(*ua.shape, ua.pose, translation_a, *ub.shape, ub.pose, translation_b, tolerance,
+                          max_iterations, overlap_normal);
+    }
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const RelativeFrame frame = relative_frame(pose_a, pose_b);

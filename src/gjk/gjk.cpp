@@ -43,8 +43,7 @@ struct LocalDistance {
     bool lengthened = false;
 };
 
-// Recoveries from a rounding-limit stop per query (each one either shrinks ||v|| by more than
-// rounding or restarts the simplex; the iteration guard bounds them too).
+// Recoveries from a rounding-limit stop per query (each shrinks ||v|| past rounding or restarts).
 constexpr int kRecoveries = 6;
 
 // margin: sum of the radii folded out of the shapes (0 for polytopes); the rounded shapes'
@@ -417,8 +416,7 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
 Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
 
 // Pairs with a closed form: cores that are points or segments (spheres, capsules, points,
-// segments), or a point core and a box, cylinder or cone. No GJK loop, one "iteration", exact to
-// rounding.
+// segments), or a point core and a box, cylinder or cone. No loop, one "iteration", exact to rounding.
 inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core == Core::Segment; }
 inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
     return (line_core(ca) && line_core(cb)) || point_and_solid(ca, cb);
@@ -426,8 +424,35 @@ inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
 
 // The cores' closest points in A's frame (the loop's LocalDistance, at the caller's scale);
 // center_offset receives B's origin in A's frame.
-LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
-                                 const Transform& pose_b, Vec3& center_offset);
+LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                                 Vec3& center_offset) {
+    // Only B's centre and axis in A's frame are needed, not the whole relative rotation.
+    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    center_offset = t;
+    const double ha = ca.core == Core::Segment ? segment_half_length(*ca.shape) : 0;
+    const double hb = cb.core == Core::Segment ? segment_half_length(*cb.shape) : 0;
+    const Vec3 d = pose_a.to_local_direction(pose_b.rotation.col(2));
+    const closed_form::SegmentPair cp = closed_form::closest_points(ha, t, d, hb);
+    const Vec3 gap = cp.q - cp.p;  // from A's core toward B's
+    LocalDistance l{};
+    l.core = closed_form::safe_length(gap);
+    l.v = -gap;
+    l.point_a = cp.p;
+    l.point_b = cp.q;
+    const double margin = ca.radius + cb.radius;
+    if (l.core > 0) {
+        const closed_form::Axis axis = closed_form::separating_axis(ha, t, d, hb, closed_form::unit_of(gap));
+        l.unit = axis.n;
+        // Apart only when the axis proves it: the cores' shadows on it, grown by the radii, do not
+        // meet. Closer than that is touching within rounding, as GJK's own rule reads it.
+        l.intersecting = !(l.core > margin && axis.sep > margin);
+    } else {
+        l.intersecting = true;
+    }
+    l.iterations = 1;
+    l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
+    return l;
+}
 
 // A point core and a box, cylinder or cone, in the solid's frame: its nearest point to the point
 // (closed_form::solid_nearest); the axis t - p separates whenever it is not zero. When B is the
@@ -466,36 +491,6 @@ LocalDistance closed_form_distance(const CoreOf& ca, const Transform& pose_a, co
                                           : point_solid_distance(ca, pose_a, cb, pose_b, center_offset);
 }
 
-LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
-                                 const Transform& pose_b, Vec3& center_offset) {
-    // Only B's centre and axis in A's frame are needed, not the whole relative rotation.
-    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
-    center_offset = t;
-    const double ha = ca.core == Core::Segment ? segment_half_length(*ca.shape) : 0;
-    const double hb = cb.core == Core::Segment ? segment_half_length(*cb.shape) : 0;
-    const Vec3 d = pose_a.to_local_direction(pose_b.rotation.col(2));
-    const closed_form::SegmentPair cp = closed_form::closest_points(ha, t, d, hb);
-    const Vec3 gap = cp.q - cp.p;  // from A's core toward B's
-    LocalDistance l{};
-    l.core = closed_form::safe_length(gap);
-    l.v = -gap;
-    l.point_a = cp.p;
-    l.point_b = cp.q;
-    const double margin = ca.radius + cb.radius;
-    if (l.core > 0) {
-        const closed_form::Axis axis = closed_form::separating_axis(ha, t, d, hb, closed_form::unit_of(gap));
-        l.unit = axis.n;
-        // Apart only when the axis proves it: the cores' shadows on it, grown by the radii, do not
-        // meet. Closer than that is touching within rounding, as GJK's own rule reads it.
-        l.intersecting = !(l.core > margin && axis.sep > margin);
-    } else {
-        l.intersecting = true;
-    }
-    l.iterations = 1;
-    l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
-    return l;
-}
-
 }  // namespace
 
 bool closed_form_cores(const CoreOf& ca, const CoreOf& cb) { return closed_form_pair(ca, cb); }
@@ -526,6 +521,10 @@ CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const Core
 
 DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                             double tolerance, uint32_t max_iterations, HeldTetrahedron* held, DistanceSeed* seed) {
+    if (rigidly_placed(a) || rigidly_placed(b)) {
+        const PlacedShape ua = unwrap_rigid(a, pose_a), ub = unwrap_rigid(b, pose_b);
+        return gjk_distance(*ua.shape, ua.pose, *ub.shape, ub.pose, tolerance, max_iterations, held, seed);
+    }
     if (max_iterations == 0) max_iterations = 1;
     const CoreOf ca = classify(a), cb = classify(b);
     const double radius_a = ca.radius, radius_b = cb.radius;
@@ -571,6 +570,10 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
 
 bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Vec3& io_axis,
                    uint32_t* out_iterations) {
+    if (rigidly_placed(a) || rigidly_placed(b)) {
+        const PlacedShape ua = unwrap_rigid(a, pose_a), ub = unwrap_rigid(b, pose_b);
+        return gjk_intersect(*ua.shape, ua.pose, *ub.shape, ub.pose, io_axis, out_iterations);
+    }
     const CoreOf ca = classify(a), cb = classify(b);
     if (closed_form_pair(ca, cb)) {
         Vec3 center_offset;

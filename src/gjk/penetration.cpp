@@ -110,6 +110,10 @@ double separation_along(const CoreOf& ca, const Transform& pose_a, const CoreOf&
 
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                                double tolerance, uint32_t max_iterations) {
+    if (rigidly_placed(a) || rigidly_placed(b)) {
+        const PlacedShape ua = unwrap_rigid(a, pose_a), ub = unwrap_rigid(b, pose_b);
+        return signed_distance(*ua.shape, ua.pose, *ub.shape, ub.pose, tolerance, max_iterations);
+    }
     const CoreOf ca = classify(a), cb = classify(b);
     const double margin = ca.radius + cb.radius;
     // GJK's tetrahedron around the origin, the expansion's start: of the shapes themselves when

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -106,14 +107,53 @@ struct ConvexHullShape final : Shape {
 
 struct TransformedShape final : Shape {
     TransformedShape(const Shape& c, const Mat3& l, Vec3 t)
-        : Shape(ShapeKind::Transformed), child(&c), linear(l), translation(t) {
+        : Shape(ShapeKind::Transformed), child(&c), linear(l), translation(t), rigid(is_rotation(l)) {
         child->retain();
     }
     ~TransformedShape() override { child->release(); }
     const Shape* child;
     Mat3 linear;
     Vec3 translation;
+    // linear is a rotation to rounding: the shape is its child placed rigidly (see unwrap_rigid).
+    bool rigid;
+
+private:
+    // Orthonormal to 16 units in the last place of 1 (rotation matrices of normalised
+    // quaternions reach 11) and not a reflection.
+    static bool is_rotation(const Mat3& l) {
+        const Mat3 g = transpose_mul(l, l);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (!(std::fabs(g.r[i][j] - (i == j ? 1.0 : 0.0)) <= 0x1p-48)) return false;
+        return determinant(l) > 0;
+    }
 };
+
+// A shape and the pose of its local frame.
+struct PlacedShape {
+    const Shape* shape;
+    Transform pose;
+};
+
+// True when s is a rigidly transformed shape (a TransformedShape whose linear part is a rotation).
+inline bool rigidly_placed(const Shape& s) {
+    return s.kind() == ShapeKind::Transformed && static_cast<const TransformedShape&>(s).rigid;
+}
+
+// A rigidly transformed shape at pose is its child at the composed pose (nested ones in turn).
+// The queries take the child from here, so its closed forms and support kernel apply: two
+// translated balls once went to the expansion through the generic support, 135 us and 1 % short
+// of the depth, instead of the ball/ball closed form. The shape is the same to rounding (the
+// rotation's 16 units in the last place); the composed pose is exact for an identity linear part.
+inline PlacedShape unwrap_rigid(const Shape& s, const Transform& pose) {
+    PlacedShape p{&s, pose};
+    while (rigidly_placed(*p.shape)) {
+        const auto& t = static_cast<const TransformedShape&>(*p.shape);
+        p.pose = {p.pose.rotation * t.linear, p.pose.apply(t.translation)};
+        p.shape = t.child;
+    }
+    return p;
+}
 // A shape made of two others, each kept alive by a reference it holds.
 struct BinaryShape : Shape {
     BinaryShape(ShapeKind k, const Shape& a_, const Shape& b_) : Shape(k), a(&a_), b(&b_) {
