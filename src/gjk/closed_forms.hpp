@@ -124,8 +124,18 @@ inline Revolution revolution_of(const Shape& s) {
 // normal, else (a rim, the apex) the section's gap direction. A direction taken from t - p would
 // carry the rounding of p (a point 1e-12 off a cylinder's side got an axis 1e-4 rad off its
 // normal, which then did not show the gap).
+// A point's place about a solid's axis: its distance from the axis and the radial unit (over the
+// larger part first: t / rho, of subnormal parts, was (1 1 0); zero on the axis). The nearest
+// point from outside and the depth from inside both start here.
+struct Section {
+    double rho;
+    Planar radial;
+};
+inline Section section_of(Vec3 t) { return {std::hypot(t.x, t.y), radial_unit(t.x, t.y)}; }
+
 inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit) {
-    const double rho = std::hypot(t.x, t.y);
+    const Section section = section_of(t);
+    const double rho = section.rho;
     double pr = rho < r ? rho : r, pz = clamp_to(t.z, h);  // the section's point: (radius, z)
     double nr = rho - pr, nz = t.z - pz;                   // the section's outward direction (gap)
     if (cone && t.z > -h) {
@@ -153,8 +163,8 @@ inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit
             if (!on_slant && (s >= l ? past < 0 : past > 0)) nr = across, nz = up;
         }
     }
-    // Both directions over their larger part first: t / rho, of subnormal parts, was (1 1 0).
-    const Planar radial = radial_unit(t.x, t.y), gap = radial_unit(nr, nz);
+    // The gap's direction too over its larger part first.
+    const Planar radial = section.radial, gap = radial_unit(nr, nz);
     unit = gap.x * Vec3{radial.x, radial.y, 0} + Vec3{0, 0, gap.y};
     const double k = rho > 0 ? pr / rho : 0;
     return {k * t.x, k * t.y, pz};

@@ -52,10 +52,9 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
         const closed_form::Revolution v = closed_form::revolution_of(solid);
         const bool cone = v.cone;
         const double r = v.radius, hh = v.half_height;
-        const double rho = std::hypot(t.x, t.y);
-        // Not t / rho: of subnormal parts that was (1 1 0) (fuzz_queries). On the axis: any.
-        const Planar radial = radial_unit(t.x, t.y);
-        const Vec3 u = rho > 0 ? Vec3{radial.x, radial.y, 0} : Vec3{1, 0, 0};
+        const closed_form::Section section = closed_form::section_of(t);
+        const double rho = section.rho;
+        const Vec3 u = rho > 0 ? Vec3{section.radial.x, section.radial.y, 0} : Vec3{1, 0, 0};  // on the axis: any
         // The end: the cylinder's nearer one, the cone's base at z = -h. The side: a cone's slant
         // has the normal (2h u + r e_z) / l in the half-plane and passes through the rim (r, -h).
         const double end_sign = cone || t.z < 0 ? -1.0 : 1.0;

@@ -105,8 +105,10 @@ inline Vec3 best_point(const Vec3* v, const double* xyz, size_t n, Vec3 d) {
         const size_t i = best_vertex_avx2(xyz, n, d.x, d.y, d.z), p = padded(n);
         return {xyz[i], xyz[p + i], xyz[2 * p + i]};
     }
-#endif
+    return v[best_vertex_sse2(v, n, d)];
+#else
     return v[best_vertex(v, xyz, n, d)];
+#endif
 }
 
 }  // namespace kairos::small_hull
