@@ -113,6 +113,15 @@ inline Revolution revolution_of(const Shape& s) {
     return {false, c.radius, c.half_height};
 }
 
+// A point's place about a solid's axis: its distance from the axis and the radial unit (over the
+// larger part first: t / rho, of subnormal parts, was (1 1 0); zero on the axis). The nearest
+// point from outside and the depth from inside both start here.
+struct Section {
+    double rho;
+    Planar radial;
+};
+inline Section section_of(Vec3 t) { return {std::hypot(t.x, t.y), radial_unit(t.x, t.y)}; }
+
 // Nearest point to t (its own frame) of a solid cylinder (radius r, |z| <= h) or cone (apex
 // (0, 0, h), base disk of radius r at z = -h): t itself inside. It lies in the axial half-plane
 // through t (turning a point of the solid about the axis into that half-plane brings it no
@@ -124,15 +133,6 @@ inline Revolution revolution_of(const Shape& s) {
 // normal, else (a rim, the apex) the section's gap direction. A direction taken from t - p would
 // carry the rounding of p (a point 1e-12 off a cylinder's side got an axis 1e-4 rad off its
 // normal, which then did not show the gap).
-// A point's place about a solid's axis: its distance from the axis and the radial unit (over the
-// larger part first: t / rho, of subnormal parts, was (1 1 0); zero on the axis). The nearest
-// point from outside and the depth from inside both start here.
-struct Section {
-    double rho;
-    Planar radial;
-};
-inline Section section_of(Vec3 t) { return {std::hypot(t.x, t.y), radial_unit(t.x, t.y)}; }
-
 inline Vec3 revolution_nearest(bool cone, double r, double h, Vec3 t, Vec3& unit) {
     const Section section = section_of(t);
     const double rho = section.rho;
