@@ -3,7 +3,7 @@
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"
 #include "gjk/bend.hpp"
-#include "gjk/closed_forms.hpp"
+#include "gjk/closed_form_distance.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/loop_rules.hpp"
 #include "gjk/seed.hpp"
@@ -17,6 +17,9 @@ namespace kairos {
 namespace {
 
 using gjk_detail::below_lower_bound;
+using gjk_detail::closed_form_distance;
+using gjk_detail::closed_form_pair;
+using gjk_detail::LocalDistance;
 using gjk_detail::prove_by_faces;
 using gjk_detail::proven_axis;
 using gjk_detail::refine_full_coordinates;
@@ -28,20 +31,6 @@ using gjk_detail::touching;
 using namespace kernels;
 
 // ---- The distance loop -------------------------------------------------------------------------
-
-// In A's frame, at the caller's scale (the loop's own scale undone).
-struct LocalDistance {
-    double core;  // ||v|| of the final estimate (cores)
-    Vec3 v, point_a, point_b;
-    Vec3 unit;  // -v / ||v||, or zero when v is zero
-    Vec3 proven{};  // shapes without radii: the axis to report, or zero for unit (gjk_detail::proven_axis)
-    bool intersecting;
-    uint32_t iterations;
-    Termination termination;
-    // The last simplex was a triangle whose coordinates did not reproduce v, and the sub-simplex
-    // taken instead lies farther than the tolerance allows (see distance_query).
-    bool lengthened = false;
-};
 
 // Recoveries from a rounding-limit stop per query (each shrinks ||v|| past rounding or restarts).
 constexpr int kRecoveries = 6;
@@ -355,7 +344,8 @@ template <class Pair>
 }
 
 template <class Pair>
-bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations) {
+bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iterations, uint32_t& out_iterations,
+                    bool& out_unsure) {
     // pair by value: its scale is set from the first support points
     Simplex s;
     s.want_lambda = false;
@@ -405,6 +395,7 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
             if (!d.intersecting) {
                 io_v = d.v;
                 result = false;
+                out_unsure = d.termination == Termination::JohnsonFailed || d.termination == Termination::NoProgress;
             }
             break;
         }
@@ -414,82 +405,6 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
 }
 
 Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
-
-// Pairs with a closed form: cores that are points or segments (spheres, capsules, points,
-// segments), or a point core and a box, cylinder or cone. No loop, one "iteration", exact to rounding.
-inline bool line_core(const CoreOf& c) { return c.core == Core::Point || c.core == Core::Segment; }
-inline bool closed_form_pair(const CoreOf& ca, const CoreOf& cb) {
-    return (line_core(ca) && line_core(cb)) || point_and_solid(ca, cb);
-}
-
-// The cores' closest points in A's frame (the loop's LocalDistance, at the caller's scale);
-// center_offset receives B's origin in A's frame.
-LocalDistance line_core_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
-                                 Vec3& center_offset) {
-    // Only B's centre and axis in A's frame are needed, not the whole relative rotation.
-    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
-    center_offset = t;
-    const double ha = ca.core == Core::Segment ? segment_half_length(*ca.shape) : 0;
-    const double hb = cb.core == Core::Segment ? segment_half_length(*cb.shape) : 0;
-    const Vec3 d = pose_a.to_local_direction(pose_b.rotation.col(2));
-    const closed_form::SegmentPair cp = closed_form::closest_points(ha, t, d, hb);
-    const Vec3 gap = cp.q - cp.p;  // from A's core toward B's
-    LocalDistance l{};
-    l.core = closed_form::safe_length(gap);
-    l.v = -gap;
-    l.point_a = cp.p;
-    l.point_b = cp.q;
-    const double margin = ca.radius + cb.radius;
-    if (l.core > 0) {
-        const closed_form::Axis axis = closed_form::separating_axis(ha, t, d, hb, closed_form::unit_of(gap));
-        l.unit = axis.n;
-        // Apart only when the axis proves it: the cores' shadows on it, grown by the radii, do not
-        // meet. Closer than that is touching within rounding, as GJK's own rule reads it.
-        l.intersecting = !(l.core > margin && axis.sep > margin);
-    } else {
-        l.intersecting = true;
-    }
-    l.iterations = 1;
-    l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
-    return l;
-}
-
-// A point core and a box, cylinder or cone, in the solid's frame: its nearest point to the point
-// (closed_form::solid_nearest); the axis t - p separates whenever it is not zero. When B is the
-// solid the answer is brought back to A's frame, where A's core is the origin.
-LocalDistance point_solid_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
-                                   Vec3& center_offset) {
-    const bool a_is_solid = ca.core != Core::Point;
-    const Transform& solid_pose = a_is_solid ? pose_a : pose_b;
-    const Transform& point_pose = a_is_solid ? pose_b : pose_a;
-    const Vec3 t = solid_pose.to_local_direction(point_pose.translation - solid_pose.translation);
-    Vec3 unit;  // the solid's frame, from it toward the point
-    const Vec3 p = closed_form::solid_nearest(a_is_solid ? *ca.shape : *cb.shape, t, unit);
-    LocalDistance l{};
-    l.core = closed_form::safe_length(t - p);
-    l.intersecting = !(l.core > ca.radius + cb.radius);
-    l.iterations = 1;
-    l.termination = l.intersecting ? Termination::FullSimplex : Termination::RelativeError;
-    if (a_is_solid) {
-        center_offset = t;
-        l.point_a = p;
-        l.point_b = t;
-        l.unit = unit;
-    } else {
-        center_offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
-        l.point_a = {};
-        l.point_b = pose_a.to_local_direction(pose_b.apply(p) - pose_a.translation);
-        l.unit = -pose_a.to_local_direction(pose_b.rotation * unit);
-    }
-    l.v = -l.core * l.unit;
-    return l;
-}
-
-LocalDistance closed_form_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
-                                   const Transform& pose_b, Vec3& center_offset) {
-    return line_core(ca) && line_core(cb) ? line_core_distance(ca, pose_a, cb, pose_b, center_offset)
-                                          : point_solid_distance(ca, pose_a, cb, pose_b, center_offset);
-}
 
 }  // namespace
 
@@ -565,6 +480,21 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     r.point_b = pose_a.apply(pb);
     const bool proven = radius_a + radius_b == 0 && dot(l.proven, l.proven) > 0;
     r.axis = world_direction(pose_a, proven ? l.proven : n);
+    if (!r.intersecting && radius_a + radius_b == 0 &&
+        (r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress)) [[unlikely]] {
+        const epa_detail::CoreDepth d =
+            overlap_behind_rounding_stop(ca, pose_a, cb, pose_b, proven ? l.proven : n, tolerance);
+        r.iterations += d.iterations;
+        if (d.depth > 0) {
+            r.intersecting = true;
+            r.distance = 0;
+            // GJK's points, a rounding apart, are at the contact; the expansion's may not be (a
+            // curved rim's support point as its bound's witness).
+            r.point_a = r.point_b = 0.5 * (r.point_a + r.point_b);
+            r.axis = world_direction(pose_a, d.n);
+            r.termination = Termination::FullSimplex;
+        }
+    }
     return r;
 }
 
@@ -583,6 +513,7 @@ bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, cons
         return l.intersecting;
     }
     uint32_t it = 0;
+    bool unsure = false;
     Vec3 v_local = -pose_a.to_local_direction(io_axis);
     const bool usable = is_finite(v_local) && dot(v_local, v_local) > 0 && std::isfinite(dot(v_local, v_local));
     bool hit = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
@@ -590,9 +521,16 @@ bool gjk_intersect(const Shape& a, const Transform& pose_a, const Shape& b, cons
             v_local = -pair.t;
             if (!(dot(v_local, v_local) > 0)) v_local = {1, 0, 0};
         }
-        return intersect_loop(pair, margin, v_local, 256, it);
+        return intersect_loop(pair, margin, v_local, 256, it, unsure);
     });
-    if (!hit) io_axis = world_direction(pose_a, unit_or(-v_local, dot(v_local, v_local), {1, 0, 0}));
+    const double vv = dot(v_local, v_local);
+    if (!hit && unsure && ca.radius + cb.radius == 0) [[unlikely]] {  // see overlap_behind_rounding_stop
+        const epa_detail::CoreDepth d =
+            overlap_behind_rounding_stop(ca, pose_a, cb, pose_b, unit_or(-v_local, vv, {1, 0, 0}), 1e-9);
+        it += d.iterations;
+        hit = d.depth > 0;
+    }
+    if (!hit) io_axis = world_direction(pose_a, unit_or(-v_local, vv, {1, 0, 0}));
     if (out_iterations) *out_iterations = it;
     return hit;
 }

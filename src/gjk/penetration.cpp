@@ -107,6 +107,20 @@ double separation_along(const CoreOf& ca, const Transform& pose_a, const CoreOf&
 
 }  // namespace
 
+CoreDepth overlap_behind_rounding_stop(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
+                                       const Transform& pose_b, Vec3 axis, double tolerance) {
+    Vec3 a_point;
+    const double along = separation_along(ca, pose_a, cb, pose_b, axis, a_point);
+    const Vec3 offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    const double rounding = 0x1p-40 * (max_abs(offset) + max_abs(a_point));
+    if (!(along < -rounding)) return {};
+    CoreDepth d = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+        return Expander<std::decay_t<decltype(pair)>>(pair, pair.t, 128).run(tolerance);
+    });
+    if (!(d.depth > rounding) || d.flat) d.depth = 0;
+    return d;
+}
+
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                                double tolerance, uint32_t max_iterations) {
     if (rigidly_placed(a) || rigidly_placed(b)) {
