@@ -45,11 +45,12 @@ CoreDistance core_distance(const kernels::CoreOf& ca, const Transform& pose_a, c
 
 // GJK's gap between shapes without radii when a rounding rule stopped it (no progress, or no valid
 // sub-simplex) is no verdict when its own axis (unit, A's frame) shows the shapes overlapping by
-// more than rounding (2^-40 of the offset and the support point). Faces tilted 1e-9 against each
-// other, 1e-12 apart at one end, made A - B a slab of nearly coplanar facets: GJK stopped 2e-11 of
-// the size "apart", along an axis on which the boxes overlapped by 2e-10, for boxes a vertex of
-// which lay 1.2e-10 inside the other. The expansion then decides: a depth > 0 (past the same
-// rounding) is the overlap, with its normal (A's frame); else depth 0. iterations: its support
+// more than rounding: 2^-46 of the offset plus the support point, a few units in the last place of
+// the support value. Faces tilted 1e-9 against each other, 1e-12 apart at one end, made A - B a
+// slab of nearly coplanar facets: GJK stopped 2e-11 of the size "apart", along an axis on which
+// the boxes overlapped by 2e-10, for boxes a vertex of which lay 1.2e-10 inside the other (and
+// 1e-13 "apart" for a vertex 1e-12 inside). The expansion then decides: a depth past the same
+// rounding is the overlap, with its normal (A's frame); else depth 0. iterations: its support
 // calls.
 epa_detail::CoreDepth overlap_behind_rounding_stop(const kernels::CoreOf& ca, const Transform& pose_a,
                                                    const kernels::CoreOf& cb, const Transform& pose_b, Vec3 axis,

@@ -112,7 +112,7 @@ CoreDepth overlap_behind_rounding_stop(const CoreOf& ca, const Transform& pose_a
     Vec3 a_point;
     const double along = separation_along(ca, pose_a, cb, pose_b, axis, a_point);
     const Vec3 offset = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
-    const double rounding = 0x1p-40 * (max_abs(offset) + max_abs(a_point));
+    const double rounding = 0x1p-46 * (max_abs(offset) + max_abs(a_point));
     if (!(along < -rounding)) return {};
     CoreDepth d = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
         return Expander<std::decay_t<decltype(pair)>>(pair, pair.t, 128).run(tolerance);

@@ -41,4 +41,5 @@ kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_cu
              ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_slides.cpp LIBS kairos_core)
 
 # Signed distance (EPA) against closed forms, the polytope oracle and the touching invariant.
-kairos_gtest(test_penetration SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_penetration.cpp LIBS kairos_core)
+kairos_gtest(test_penetration SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_penetration.cpp
+             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_tilted_contacts.cpp LIBS kairos_core)
