@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Flat bottoms on a box's face, tilted by 0 to 1e-3 rad about random axes: a box, a cylinder and a
-// cone standing on a large box, a capsule lying on it and a box rounded by a ball, their lowest
+// cone standing on a large box, a capsule lying on it, a box rounded by a ball and a box as a hull
+// (with points in its bottom face's edges), their lowest
 // point at gaps from -1e-2 to 1e-2 of the size, touching, 1e-12 apart or inside, shifted sideways
 // on the face, with their edges parallel to the face's or turned, 1 or 1e4 of the size from the
 // origin, both argument orders. Nearly parallel faces make A - B a slab of nearly coplanar facets,
@@ -15,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -51,13 +53,13 @@ TEST(TiltedContacts, FlatBottomsOnABoxFaceAtEveryTilt) {
     std::uniform_real_distribution<double> u(-1, 1);
     const double tilts[] = {0, 1e-12, 1e-9, 1e-6, 1e-3};
     const double gaps[] = {-1e-2, -1e-6, -1e-9, -1e-12, 0, 1e-12, 1e-9, 1e-6, 1e-2};
-    const char* names[] = {"box", "cylinder", "cone", "capsule", "rounded box"};
+    const char* names[] = {"box", "cylinder", "cone", "capsule", "rounded box", "hull"};
     int cases = 0, failures = 0, overlapping = 0;
-    double worst[5] = {0, 0, 0, 0, 0};
+    double worst[6] = {0, 0, 0, 0, 0, 0};
     for (double far : {1.0, 1e4}) {
-        for (int i = 0; i < 5 * 5 * 9 * 16; ++i) {
-            const int kind = i % 5;
-            const double tilt = tilts[i / 5 % 5], gap = gaps[i / 25 % 9];
+        for (int i = 0; i < 6 * 5 * 9 * 16; ++i) {
+            const int kind = i % 6;
+            const double tilt = tilts[i / 6 % 5], gap = gaps[i / 30 % 9];
             const Vec3 base_half{3, 3, 0.5};
             BoxShape base(base_half);
             const Vec3 half{0.2 + 0.8 * std::fabs(u(rng)), 0.2 + 0.8 * std::fabs(u(rng)),
@@ -71,13 +73,21 @@ TEST(TiltedContacts, FlatBottomsOnABoxFaceAtEveryTilt) {
             BoxShape core(half);
             SphereShape ball(radius);
             MinkowskiSumShape rounded(core, ball);
-            const Shape* tops[] = {&box, &cylinder, &cone, &capsule, &rounded};
+            // The box as a hull, with the midpoints of its bottom edges: coplanar points on the face.
+            gjk_test::Verts points = gjk_test::box_vertices(half);
+            for (const auto& m : {std::array<double, 3>{0, -half.y, -half.z},
+                                  {0, half.y, -half.z},
+                                  {-half.x, 0, -half.z},
+                                  {half.x, 0, -half.z}})
+                points.push_back(m);
+            const gjk_test::ShapePtr hull = gjk_test::hull(points);
+            const Shape* tops[] = {&box, &cylinder, &cone, &capsule, &rounded, hull.get()};
             const Shape& top = *tops[kind];
             const Transform pa = make_transform(far * Vec3{u(rng), u(rng), u(rng)}, random_quat(rng));
             const Vec3 n = pa.rotation.col(2);  // the base's top face normal (world)
             // The top's frame: the base's (edges parallel to the base's: the more nearly coplanar
             // facets), or turned about its normal, then tilted about a random axis.
-            const double turn = i / 225 % 2 == 0 ? 0.0 : 3.0 * u(rng);
+            const double turn = i / 270 % 2 == 0 ? 0.0 : 3.0 * u(rng);
             const Mat3 spin = to_matrix(axis_angle(n, turn));
             const Mat3 lying = to_matrix(axis_angle({1, 0, 0}, kind == 3 ? 1.5707963267948966 : 0.0));
             const Mat3 rt = to_matrix(axis_angle(random_unit(rng), tilt)) * spin * pa.rotation * lying;
@@ -86,7 +96,7 @@ TEST(TiltedContacts, FlatBottomsOnABoxFaceAtEveryTilt) {
             const Vec3 face_point = pa.apply(Vec3{1.2 * u(rng), 1.2 * u(rng), base_half.z});
             Vec3 low_local;  // the top's lowest point along -n, in its frame
             const Vec3 down = transpose(rt) * (-1.0 * n);
-            if (kind == 0 || kind == 4) {
+            if (kind == 0 || kind == 4 || kind == 5) {
                 low_local = {down.x < 0 ? -half.x : half.x, down.y < 0 ? -half.y : half.y,
                              down.z < 0 ? -half.z : half.z};
                 if (kind == 4) low_local = low_local + radius * down;
@@ -103,7 +113,7 @@ TEST(TiltedContacts, FlatBottomsOnABoxFaceAtEveryTilt) {
             const P3 face_centre = place(pa, {0, 0, base_half.z});
             const P3 nn = lift(n);
             Real low = INFINITY;
-            if (kind == 0 || kind == 4) {  // the lowest vertex, less the rounding's radius
+            if (kind == 0 || kind == 4 || kind == 5) {  // the lowest vertex, less the rounding's radius
                 for (const auto& v : gjk_test::box_vertices(half))
                     low = std::min(low, oracle::dot(nn, place(pb, {v[0], v[1], v[2]}) - face_centre));
                 if (kind == 4) low -= Real(radius);
@@ -160,8 +170,8 @@ TEST(TiltedContacts, FlatBottomsOnABoxFaceAtEveryTilt) {
     }
     std::printf(
         "tilted flat contacts: %d cases, %d overlapping; worst signed distance error: box %.3g, cylinder %.3g, "
-        "cone %.3g, capsule %.3g, rounded box %.3g of the size\n",
-        cases, overlapping, worst[0], worst[1], worst[2], worst[3], worst[4]);
+        "cone %.3g, capsule %.3g, rounded box %.3g, hull %.3g of the size\n",
+        cases, overlapping, worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]);
     EXPECT_EQ(failures, 0) << "seed " << seed;
     EXPECT_GT(overlapping, cases / 3) << "seed " << seed;
     EXPECT_LT(overlapping, cases * 2 / 3) << "seed " << seed;
