@@ -30,6 +30,9 @@ struct LocalDistance {
     // The last simplex was a triangle whose coordinates did not reproduce v, and the sub-simplex
     // taken instead lies farther than the tolerance allows (see distance_query).
     bool lengthened = false;
+    // A support call proved a positive lower bound of the distance (v.w > 0 along some direction):
+    // the shapes' depth, should they overlap, is within rounding.
+    bool bounded = false;
 };
 
 // Pairs with a closed form: cores that are points or segments (spheres, capsules, points,

@@ -283,6 +283,7 @@ LocalDistance distance_loop(Pair pair, double margin, double tolerance, uint32_t
         (changed || (t != Termination::RelativeError && t != Termination::RepeatedSupport) ||
          (t == Termination::RepeatedSupport && repeat_short)))
         out.proven = proven_axis(pair, s, t == Termination::RelativeError, lower_num, lower_den, lower_v);
+    out.bounded = lower_num > 0;
     const double inv = 1 / pair.scale;
     const double m = max_abs(s.v);
     out.core = (plain ? std::sqrt(nv) : (m > 0 ? m * length(s.v / m) : 0.0)) * inv;
@@ -395,7 +396,8 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
             if (!d.intersecting) {
                 io_v = d.v;
                 result = false;
-                out_unsure = d.termination == Termination::JohnsonFailed || d.termination == Termination::NoProgress;
+                out_unsure = !d.bounded &&
+                             (d.termination == Termination::JohnsonFailed || d.termination == Termination::NoProgress);
             }
             break;
         }
@@ -480,7 +482,7 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     r.point_b = pose_a.apply(pb);
     const bool proven = radius_a + radius_b == 0 && dot(l.proven, l.proven) > 0;
     r.axis = world_direction(pose_a, proven ? l.proven : n);
-    if (!r.intersecting && radius_a + radius_b == 0 &&
+    if (!r.intersecting && radius_a + radius_b == 0 && !l.bounded &&
         (r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress)) [[unlikely]] {
         const epa_detail::CoreDepth d =
             overlap_behind_rounding_stop(ca, pose_a, cb, pose_b, proven ? l.proven : n, tolerance);
