@@ -482,6 +482,8 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     r.point_b = pose_a.apply(pb);
     const bool proven = radius_a + radius_b == 0 && dot(l.proven, l.proven) > 0;
     r.axis = world_direction(pose_a, proven ? l.proven : n);
+    // A rounding stop's gap that no support call bounded from below may hide an overlap
+    // (overlap_behind_rounding_stop, core_distance.hpp).
     if (!r.intersecting && radius_a + radius_b == 0 && !l.bounded &&
         (r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress)) [[unlikely]] {
         const epa_detail::CoreDepth d =
