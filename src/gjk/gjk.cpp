@@ -408,6 +408,24 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
 
 Vec3 world_direction(const Transform& pose, Vec3 local) { return pose.rotation * local; }
 
+// gjk_distance's answer for shapes without radii after a rounding stop with no lower bound: made
+// an overlap when the expansion finds one (overlap_behind_rounding_stop). Out of gjk_distance's
+// body, whose frame and registers the common path uses.
+[[gnu::noinline, gnu::cold]] void settle_rounding_stop(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb,
+                                                       const Transform& pose_b, Vec3 axis, double tolerance,
+                                                       DistanceResult& r) {
+    const epa_detail::CoreDepth d = overlap_behind_rounding_stop(ca, pose_a, cb, pose_b, axis, tolerance);
+    r.iterations += d.iterations;
+    if (!(d.depth > 0)) return;
+    r.intersecting = true;
+    r.distance = 0;
+    // GJK's points, a rounding apart, are at the contact; the expansion's may not be (a curved
+    // rim's support point as its bound's witness).
+    r.point_a = r.point_b = 0.5 * (r.point_a + r.point_b);
+    r.axis = world_direction(pose_a, d.n);
+    r.termination = Termination::FullSimplex;
+}
+
 }  // namespace
 
 bool closed_form_cores(const CoreOf& ca, const CoreOf& cb) { return closed_form_pair(ca, cb); }
@@ -485,20 +503,8 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     // A rounding stop's gap that no support call bounded from below may hide an overlap
     // (overlap_behind_rounding_stop, core_distance.hpp).
     if (!r.intersecting && radius_a + radius_b == 0 && !l.bounded &&
-        (r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress)) [[unlikely]] {
-        const epa_detail::CoreDepth d =
-            overlap_behind_rounding_stop(ca, pose_a, cb, pose_b, proven ? l.proven : n, tolerance);
-        r.iterations += d.iterations;
-        if (d.depth > 0) {
-            r.intersecting = true;
-            r.distance = 0;
-            // GJK's points, a rounding apart, are at the contact; the expansion's may not be (a
-            // curved rim's support point as its bound's witness).
-            r.point_a = r.point_b = 0.5 * (r.point_a + r.point_b);
-            r.axis = world_direction(pose_a, d.n);
-            r.termination = Termination::FullSimplex;
-        }
-    }
+        (r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress)) [[unlikely]]
+        settle_rounding_stop(ca, pose_a, cb, pose_b, proven ? l.proven : n, tolerance, r);
     return r;
 }
 
