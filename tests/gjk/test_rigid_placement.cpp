@@ -18,6 +18,7 @@
 #include "gjk/gjk.hpp"
 #include "gjk/penetration.hpp"
 #include "gjk_test_support.hpp"
+#include "rigid_placement_support.hpp"
 #include "shapes/shape.hpp"
 
 using namespace kairos;
@@ -25,39 +26,17 @@ using gjk_test::random_quat;
 using gjk_test::random_unit;
 using oracle::P3;
 using oracle::Real;
+using rigid_test::map;
+using rigid_test::placement_rotation;
 
 namespace {
 
 P3 lift(Vec3 v) { return {v.x, v.y, v.z}; }
-// m x + t in long double from m's and t's doubles.
-P3 map(const Mat3& m, P3 x, Vec3 t) {
-    P3 out;
-    Real* o[3] = {&out.x, &out.y, &out.z};
-    for (int i = 0; i < 3; ++i)
-        *o[i] = Real(m.r[i].x) * x.x + Real(m.r[i].y) * x.y + Real(m.r[i].z) * x.z +
-                Real(i == 0   ? t.x
-                     : i == 1 ? t.y
-                              : t.z);
-    return out;
-}
 // A local point of a placement (linear l, translation o) at pose, in long double.
 P3 world_point(const Mat3& l, Vec3 o, const Transform& pose, P3 local) {
     return map(pose.rotation, map(l, local, o), pose.translation);
 }
 double max_coord(const Transform& p) { return max_abs(p.translation); }
-
-// The placements a test draws from: the identity, an exact quarter turn, a random rotation.
-Mat3 placement_rotation(std::mt19937_64& rng, int k) {
-    if (k == 0) return Mat3::identity();
-    if (k == 1) {
-        Mat3 m;
-        m.r[0] = {0, -1, 0};
-        m.r[1] = {1, 0, 0};
-        m.r[2] = {0, 0, 1};
-        return m;
-    }
-    return to_matrix(random_quat(rng));
-}
 
 }  // namespace
 

@@ -20,6 +20,7 @@
 #include "gjk_test_support.hpp"
 #include "motion/motion_cast.hpp"
 #include "oracle/motion_reference.hpp"
+#include "rigid_placement_support.hpp"
 #include "shapes/shape.hpp"
 
 using namespace kairos;
@@ -27,16 +28,11 @@ using gjk_test::random_quat;
 using gjk_test::random_unit;
 using oracle::P3;
 using oracle::Real;
+using rigid_test::map;
+using rigid_test::placement_rotation;
 
 namespace {
 
-// m x + t in long double from m's and t's doubles.
-P3 map(const Mat3& m, P3 x, Vec3 t) {
-    const Real tv[3] = {t.x, t.y, t.z};
-    Real o[3];
-    for (int i = 0; i < 3; ++i) o[i] = Real(m.r[i].x) * x.x + Real(m.r[i].y) * x.y + Real(m.r[i].z) * x.z + tv[i];
-    return {o[0], o[1], o[2]};
-}
 Vec3 to_vec(P3 p) { return {double(p.x), double(p.y), double(p.z)}; }
 Vec3 unit(Vec3 v) { return (1 / length(v)) * v; }
 Vec3 unit_perpendicular(Vec3 v, std::mt19937_64& rng) {
@@ -45,17 +41,6 @@ Vec3 unit_perpendicular(Vec3 v, std::mt19937_64& rng) {
         const Vec3 p = w - dot(w, v) * v;
         if (length(p) > 0.1) return unit(p);
     }
-}
-Mat3 placement_rotation(std::mt19937_64& rng, int k) {
-    if (k == 0) return Mat3::identity();
-    if (k == 1) {  // a quarter turn about x: exact
-        Mat3 m;
-        m.r[0] = {1, 0, 0};
-        m.r[1] = {0, 0, -1};
-        m.r[2] = {0, 1, 0};
-        return m;
-    }
-    return to_matrix(random_quat(rng));
 }
 }  // namespace
 
