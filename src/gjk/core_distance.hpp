@@ -20,9 +20,17 @@ struct CoreDistance {
     Vec3 unit;               // from A's core toward B's (apart); zero when unknown
     Vec3 center_offset;      // B's origin in A's frame
     bool overlap = false;
+    // A support call proved a positive lower bound of the gap (see LocalDistance::bounded).
+    bool bounded = false;
     uint32_t iterations = 0;
     Termination termination = Termination::None;
 };
+
+// Whether a GJK loop's gap may hide an overlap (overlap_behind_rounding_stop): a rounding rule
+// stopped it (no progress, or no valid sub-simplex) and no support call bounded the gap from below.
+inline bool unproven_rounding_stop(bool bounded, Termination termination) {
+    return !bounded && (termination == Termination::JohnsonFailed || termination == Termination::NoProgress);
+}
 
 // A point core (a ball's centre, a point) and a box, cylinder or cone core, either order: their
 // distance and the point's depth inside have closed forms (closed_forms.hpp, penetration.cpp).
@@ -43,8 +51,8 @@ CoreDistance core_distance(const kernels::CoreOf& ca, const Transform& pose_a, c
                            const Transform& pose_b, double tolerance, uint32_t max_iterations,
                            HeldTetrahedron* held = nullptr);
 
-// GJK's gap between shapes without radii when a rounding rule stopped it (no progress, or no valid
-// sub-simplex) is no verdict when its own axis (unit, A's frame) shows the shapes overlapping by
+// GJK's gap between shapes without radii (or between the cores of shapes with radii) when a
+// rounding rule stopped it (unproven_rounding_stop) is no verdict when its own axis (unit, A's frame) shows the shapes overlapping by
 // more than rounding: 2^-46 of the offset plus the support point, a few units in the last place of
 // the support value. Faces tilted 1e-9 against each other, 1e-12 apart at one end, made A - B a
 // slab of nearly coplanar facets: GJK stopped 2e-11 of the size "apart", along an axis on which

@@ -396,8 +396,7 @@ bool intersect_loop(Pair pair, double margin, Vec3& io_v, uint32_t max_iteration
             if (!d.intersecting) {
                 io_v = d.v;
                 result = false;
-                out_unsure = !d.bounded &&
-                             (d.termination == Termination::JohnsonFailed || d.termination == Termination::NoProgress);
+                out_unsure = unproven_rounding_stop(d.bounded, d.termination);
             }
             break;
         }
@@ -449,6 +448,7 @@ CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const Core
     c.point_a = l.point_a;
     c.point_b = l.point_b;
     c.unit = l.unit;
+    c.bounded = l.bounded;
     c.iterations = l.iterations;
     c.termination = l.termination;
     return c;
@@ -502,8 +502,7 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     r.axis = world_direction(pose_a, proven ? l.proven : n);
     // A rounding stop's gap that no support call bounded from below may hide an overlap
     // (overlap_behind_rounding_stop, core_distance.hpp).
-    if (!r.intersecting && radius_a + radius_b == 0 && !l.bounded &&
-        (r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress)) [[unlikely]]
+    if (!r.intersecting && radius_a + radius_b == 0 && unproven_rounding_stop(l.bounded, l.termination)) [[unlikely]]
         settle_rounding_stop(ca, pose_a, cb, pose_b, proven ? l.proven : n, tolerance, r);
     return r;
 }
