@@ -144,53 +144,61 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
     int best = -1;                  // the axis of the latest entry (0-2 A's faces, 3-5 B's, 6+ edges)
     double face_enter = -INFINITY;  // the latest entry over the face axes, and its axis
     int face_best = -1;
-    double best_c = 0, best_len_sq = 1, face_c = 0, best_slack = 0;
-    Vec3 best_l{}, face_l{};
+    // Per axis id: c = L.t, |L|^2 and B's approach speed along L, for the axes chosen at the end.
+    double offsets[15], lengths_sq[15], approaches[15];
     // One axis L (not unit): c = L.t, s = L.r, w the two half widths along L summed. Miss when
     // this axis alone separates the boxes over the whole step by more than the band, Declined
     // when by less (GJK counts that as touching at the start), else Hit: the axis leaves it open.
+    // Random casts make the branches on the direction and on the latest entry unpredictable:
+    // both sides are computed and selected, and the axis's vector is formed again at the end.
     using Verdict = BoxCast::Verdict;
-    auto axis = [&](int id, Vec3 l, double len_sq, double c, double s, double w, double c_error) {
+    auto axis = [&](int id, double len_sq, double c, double s, double w, double c_error) {
         // The rounding of the gap: c's, w's (a sum of four products) and the subtraction's.
         const double allow = 4 * kEps * (c_error + w) + kEps * std::fabs(c);
         const double a = std::fabs(c), gap = a - w;
         const double approach = c >= 0 ? -s : s;  // speed of B toward A along L
         const bool clear = gap > 0 && gap * gap > band_sq * len_sq;  // gap / |L| > band
         apart_at_start |= clear;
-        if (approach > 0) {
-            const double inv = 1 / approach;
-            const double in = gap * inv, out_at = (a + w + allow) * inv;
-            if (out_at < leave) leave = out_at;
-            if (in > enter) {
-                enter = in, best = id, best_c = c, best_len_sq = len_sq, best_l = l;
-                // How late the entry may be: its offsets' rounding, about eps of the reach
-                // whatever |L| (an edge axis's direction carries absolute rounding of eps).
-                best_slack = 4 * kEps * reach / approach;
-            }
-            if (id < 6 && in > face_enter) face_enter = in, face_best = id, face_c = c, face_l = l;
-            return Verdict::Hit;
-        }
-        if (gap > allow) return clear ? Verdict::Miss : Verdict::Declined;  // apart, not closing
-        if (approach < 0) {
-            const double out_at = (w - a + allow) / -approach;
-            if (out_at < leave) leave = out_at;
+        const bool closing = approach > 0;
+        // Apart and not closing: this axis decides.
+        if (!closing && gap > allow) return clear ? Verdict::Miss : Verdict::Declined;
+        offsets[id] = c, lengths_sq[id] = len_sq, approaches[id] = approach;
+        // Closing: entry and exit; opening (touching or overlapping along L): exit only; at rest
+        // (approach 0, inv infinite): neither, the exit infinite or NaN (0 * inf), not taken.
+        const double inv = 1 / std::fabs(approach);
+        const double in = closing ? gap * inv : -INFINITY;
+        const double out_at = (closing ? a + w + allow : w - a + allow) * inv;
+        leave = out_at < leave ? out_at : leave;
+        const bool later = in > enter;
+        enter = later ? in : enter;
+        best = later ? id : best;
+        if (id < 6) {
+            const bool face_later = in > face_enter;
+            face_enter = face_later ? in : face_enter;
+            face_best = face_later ? id : face_best;
         }
         return Verdict::Hit;
     };
+    // Plain arrays: Vec3's operator[] is a chain of selects when the index is not a constant.
+    const double m[3][3] = {{rot.r[0].x, rot.r[0].y, rot.r[0].z},
+                            {rot.r[1].x, rot.r[1].y, rot.r[1].z},
+                            {rot.r[2].x, rot.r[2].y, rot.r[2].z}};
+    const double ea[3] = {ha.x, ha.y, ha.z}, eb[3] = {hb.x, hb.y, hb.z};
+    const double tv[3] = {t.x, t.y, t.z}, rv[3] = {r.x, r.y, r.z};
     double abs_r[3][3];
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) abs_r[i][j] = std::fabs(rot.r[i][j]);
+        for (int j = 0; j < 3; ++j) abs_r[i][j] = std::fabs(m[i][j]);
     for (int i = 0; i < 3; ++i) {  // A's faces: L = e_i
-        const double w = ha[i] + hb.x * abs_r[i][0] + hb.y * abs_r[i][1] + hb.z * abs_r[i][2];
-        if (const Verdict v = axis(i, unit_axis(i), 1, t[i], r[i], w, 0); v != Verdict::Hit) {
+        const double w = ea[i] + hb.x * abs_r[i][0] + hb.y * abs_r[i][1] + hb.z * abs_r[i][2];
+        if (const Verdict v = axis(i, 1, tv[i], rv[i], w, 0); v != Verdict::Hit) {
             out.verdict = v;
             return out;
         }
     }
     for (int j = 0; j < 3; ++j) {  // B's faces: L = b_j
         const Vec3 b = rot.col(j);
-        const double w = hb[j] + ha.x * abs_r[0][j] + ha.y * abs_r[1][j] + ha.z * abs_r[2][j];
-        if (const Verdict v = axis(3 + j, b, 1, dot(b, t), dot(b, r), w, t_sum); v != Verdict::Hit) {
+        const double w = eb[j] + ha.x * abs_r[0][j] + ha.y * abs_r[1][j] + ha.z * abs_r[2][j];
+        if (const Verdict v = axis(3 + j, 1, dot(b, t), dot(b, r), w, t_sum); v != Verdict::Hit) {
             out.verdict = v;
             return out;
         }
@@ -199,8 +207,10 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
             const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            const Vec3 l = cross(unit_axis(i), rot.col(j));
-            const double len_sq = dot(l, l);
+            // e_i x b_j has components R_{i2 j} at i1 and -R_{i1 j} at i2 (0 at i): the products
+            // with its zero left out, as they add nothing.
+            const double l1 = -m[i2][j], l2 = m[i1][j];
+            const double len_sq = l1 * l1 + l2 * l2;
             // Edges at an angle a (|L| = sin a) apart: parallel ones add nothing the face axes
             // miss, and below a = tolerance / 100 the axis adds less than that share of the size.
             // The axis's direction carries rounding of eps / a, which tilts its bound by that
@@ -210,13 +220,20 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
             if (len_sq < sharp_sq) return out;
             // |L.e_k| = |R_{k j}| for k != i, and |L.b_k| = |R_{i m}| for the third index m.
             const double w =
-                ha[i1] * abs_r[i2][j] + ha[i2] * abs_r[i1][j] + hb[j1] * abs_r[i][j2] + hb[j2] * abs_r[i][j1];
-            if (const Verdict v = axis(6 + 3 * i + j, l, len_sq, dot(l, t), dot(l, r), w, t_sum); v != Verdict::Hit) {
+                ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j] + eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
+            const double c = l1 * tv[i1] + l2 * tv[i2], s = l1 * rv[i1] + l2 * rv[i2];
+            if (const Verdict v = axis(6 + 3 * i + j, len_sq, c, s, w, t_sum); v != Verdict::Hit) {
                 out.verdict = v;
                 return out;
             }
         }
     }
+    // The axis of a given id, as its offsets were formed.
+    const auto axis_vector = [&](int id) {
+        if (id < 3) return unit_axis(id);
+        if (id < 6) return rot.col(id - 3);
+        return cross(unit_axis((id - 6) / 3), rot.col((id - 6) % 3));
+    };
     if (!apart_at_start) return out;  // touching or overlapping at the start
     // Near a graze or the step's end the verdict is within rounding of the other one.
     if (!(std::fabs(leave - enter) * motion > band) || !(std::fabs(enter - 1) * motion > band)) return out;
@@ -225,18 +242,21 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         return out;
     }
     if (!(enter > 0) || best < 0) return out;  // not expected after the start test; left to GJK
+    // How late the entry may be: its offsets' rounding, about eps of the reach whatever |L| (an
+    // edge axis's direction carries absolute rounding of eps).
+    const double best_slack = 4 * kEps * reach / approaches[best];
     // The normal and feature: a face's when a face axis enters within the band of the latest, or
     // within the latest's rounding (a face resting on a face or an edge ties with the axes of the
     // edges parallel to it, and an edge axis from nearly parallel edges, nearly that face's
     // normal, can lead by its rounding: its edges' closest points then lie anywhere along them).
     // The time then sheds that rounding too, keeping to the face's entry at least.
     int id = best;
-    double c = best_c, len_sq = best_len_sq;
-    Vec3 l = best_l;
     if (id >= 6 && face_best >= 0 && !((enter - best_slack - face_enter) * motion > band)) {
-        id = face_best, c = face_c, len_sq = 1, l = face_l;
+        id = face_best;
         enter = std::fmax(face_enter, enter - best_slack);
     }
+    const double c = offsets[id], len_sq = lengths_sq[id];
+    const Vec3 l = axis_vector(id);
     const double sign = c >= 0 ? 1.0 : -1.0;
     const Vec3 n = (sign / std::sqrt(len_sq)) * l;
     const Vec3 cb = t + enter * r;  // B's centre at toi
