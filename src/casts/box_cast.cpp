@@ -185,9 +185,10 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
                             {rot.r[2].x, rot.r[2].y, rot.r[2].z}};
     const double ea[3] = {ha.x, ha.y, ha.z}, eb[3] = {hb.x, hb.y, hb.z};
     const double tv[3] = {t.x, t.y, t.z}, rv[3] = {r.x, r.y, r.z};
-    double abs_r[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) abs_r[i][j] = std::fabs(m[i][j]);
+    // Written out: GCC at -O2 does not unroll the loop form, and the SAT loops below ran slower.
+    const double abs_r[3][3] = {{std::fabs(m[0][0]), std::fabs(m[0][1]), std::fabs(m[0][2])},
+                                {std::fabs(m[1][0]), std::fabs(m[1][1]), std::fabs(m[1][2])},
+                                {std::fabs(m[2][0]), std::fabs(m[2][1]), std::fabs(m[2][2])}};
     for (int i = 0; i < 3; ++i) {  // A's faces: L = e_i
         const double w = ea[i] + hb.x * abs_r[i][0] + hb.y * abs_r[i][1] + hb.z * abs_r[i][2];
         if (const Verdict v = axis(i, 1, tv[i], rv[i], w, 0); v != Verdict::Hit) {
