@@ -206,13 +206,14 @@ TEST(BoxCast, FaceOntoFaceAtEveryGapAndTwist) {
 // normal (the faces nearly parallel: A - B a slab of nearly coplanar facets, where GJK's rounding
 // stops live), B's lowest corner `gap` of the size above A's top face and closing it at lambda*.
 // The truth: that corner's height over the face, in long double from the placed doubles, over the
-// closing speed.
+// closing speed. The same boxes rounded by balls (cores shrunk by the radii) take the GJK cast
+// with margins: the lowest core corner less B's radius.
 TEST(BoxCast, FaceOntoTiltedFace) {
     const uint64_t seed = 24005;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     Tally tally;
-    int misses = 0;
+    int misses = 0, rounded_casts = 0;
     for (double scale : {1e-3, 1.0, 1e3}) {
         for (double far : {0.0, 1e5}) {
             for (double gap : {1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1}) {
@@ -283,11 +284,43 @@ TEST(BoxCast, FaceOntoTiltedFace) {
                         EXPECT_GT(dot(c.r.normal, up), 0) << what << ": the normal points from A toward B";
                     }
                     tally.add(c);
+
+                    // The same boxes rounded (cores shrunk by the radii, so A's top face stays and
+                    // B's lowest point moves by less than the radius): the GJK cast with margins.
+                    const double ra = 0.1 * scale * u(rng), rb = 0.1 * scale * u(rng);
+                    const Vec3 ca = ha - Vec3{ra, ra, ra}, cb = hb - Vec3{rb, rb, rb};
+                    const BoxShape core_a(ca), core_b(cb);
+                    const SphereShape ball_a(ra), ball_b(rb);
+                    const MinkowskiSumShape round_a(core_a, ball_a), round_b(core_b, ball_b);
+                    Real low = INFINITY;
+                    for (int j = 0; j < 8; ++j)
+                        low = std::min(low, along(placed(pb, (j & 1) ? cb.x : -cb.x, (j & 2) ? cb.y : -cb.y,
+                                                         (j & 4) ? cb.z : -cb.z)));
+                    const Real rounded_height = low - Real(rb) - along(placed(pa, 0, 0, ha.z));
+                    const Real rounded_left = rounded_height - closing;
+                    if (rounded_left > 0 && rounded_left <= 2 * kTol * diameter + 1e-15 * length(base)) continue;
+                    const double rounded_truth = std::fmax(0.0, double(rounded_height / closing));
+                    for (int order = 0; order < 2; ++order) {
+                        const CastResult q = order == 0 ? shape_cast(round_a, pa, ta, round_b, pb, tb, kTol, kMaxIt)
+                                                        : shape_cast(round_b, pb, tb, round_a, pa, ta, kTol, kMaxIt);
+                        ++rounded_casts;
+                        EXPECT_EQ(q.hit, !(rounded_left > 0)) << what << " rounded, order " << order;
+                        if (!q.hit || rounded_left > 0) continue;
+                        EXPECT_LE(q.toi, rounded_truth + slack.toi) << what << " rounded, order " << order;
+                        EXPECT_GE(q.toi, rounded_truth - slack.toi) << what << " rounded, order " << order;
+                        if (q.toi > 0) {
+                            const Vec3 facing = order == 0 ? up : -1.0 * up;
+                            EXPECT_LE(angle_between(q.normal, facing), tilt + 1e-9)
+                                << what << " rounded, order " << order << ": not the face's normal";
+                        }
+                    }
                 }
             }
         }
     }
     tally.report("face onto tilted face", 1e-7);
+    std::printf("[face onto tilted face] %d casts of the rounded boxes\n", rounded_casts);
+    EXPECT_GT(rounded_casts, tally.cases) << "seed " << seed;
     // Only a few far, nearly touching starts are misses.
     EXPECT_LT(misses, tally.cases / 20) << "seed " << seed;
 }
