@@ -94,6 +94,68 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
     return d;
 }
 
+// The depth of two overlapping coaxial cores among cylinders, cones and segments (capsules'), at
+// least one of them a cylinder or a cone, exact. About a common axis every direction turns into
+// one axial half-plane without changing the translation that separates the shapes along it, and
+// in that plane each core is its axial section: a rectangle, a triangle or a segment on the axis.
+// The least translation is then that of two polygons, along a normal of one of their edges (the
+// edges of A's section and of B's, turned over: both signs of each are tried). Each candidate's
+// translation is measured with the shapes' own supports, so it is a translation that separates
+// them whatever their placement: never below the depth. The expansion can only approach the circle
+// along which coaxial sides meet (two coincident cylinders took its 254 support calls to come
+// within 6e-4 of the depth, in about 0.5 ms). Taken when the axes are coaxial to within `bound`
+// (the offset across A's axis plus the angle between the axes times B's reach: the most either
+// moves a translation), which puts the answer within twice that of the depth: within the
+// tolerance of the size. False otherwise, or when the cores do not overlap.
+bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                   double tolerance, CoreDepth& out) {
+    const auto axial = [](const CoreOf& c) { return c.core == Core::Revolution || c.core == Core::Segment; };
+    if (!axial(ca) || !axial(cb) || (ca.core != Core::Revolution && cb.core != Core::Revolution)) return false;
+    // A core's reach from its origin, and its cone's slant normals' components (zero: no cone).
+    struct Section {
+        double reach, across = 0, up = 0;
+    };
+    const auto section = [](const CoreOf& c) {
+        if (c.core == Core::Segment) return Section{segment_half_length(*c.shape)};
+        const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
+        const double reach = std::hypot(v.radius, v.half_height);
+        if (!v.cone) return Section{reach};
+        const closed_form::Slant slant = closed_form::slant_of(v.radius, v.half_height);
+        return Section{reach, slant.across, slant.up};
+    };
+    const Section sa = section(ca), sb = section(cb);
+    const RelativeFrame f = relative_frame(pose_a, pose_b);
+    const Vec3 axis_b = f.r.col(2);
+    const double off = std::hypot(f.t.x, f.t.y);
+    // The angle between the axes (or the one and the other reversed) is at most pi/2 times the
+    // sine, which is the axis's part across A's axis.
+    const double bound = off + 1.5708 * std::hypot(axis_b.x, axis_b.y) * sb.reach;
+    if (!(2 * bound <= tolerance * (sa.reach + sb.reach))) return false;
+    // The half-plane: toward B's axis when it is off A's, else any.
+    const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
+    double candidates[12][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    int n = 4;
+    for (const Section* c : {&sa, &sb})
+        if (c->across > 0)
+            for (const double x : {c->across, -c->across})
+                for (const double z : {c->up, -c->up}) candidates[n][0] = x, candidates[n][1] = z, ++n;
+    return with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+        double best = INFINITY;
+        for (int i = 0; i < n; ++i) {
+            const Vec3 u = candidates[i][0] * e + Vec3{0, 0, candidates[i][1]};
+            Vec3 pa, pb;
+            const double d = dot(u, pair(u, pa, pb));  // the translation of B along u that separates
+            if (d < best) best = d, out.n = u, out.point_a = pa, out.point_b = pb;
+        }
+        if (!(best > 0) || !std::isfinite(best)) return false;
+        out.depth = best;
+        out.iterations = 1;
+        out.termination = Termination::RelativeError;
+        out.flat = false;
+        return true;
+    });
+}
+
 // The cores' separation along the unit axis n (A's frame, from A toward B): B's support value
 // along -n less A's along n, a lower bound of their gap when positive; a_point gets A's support
 // point along n.
@@ -181,6 +243,9 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // contact: a curved rim's support point as its bound's witness).
         depth = settled;
         depth.point_a = depth.point_b = 0.5 * (c.point_a + c.point_b);
+        depth.iterations += c.iterations;
+        total = depth.depth + margin;
+    } else if (!apart && coaxial_depth(ca, pose_a, cb, pose_b, tolerance, depth)) {
         depth.iterations += c.iterations;
         total = depth.depth + margin;
     } else if (axis_shows_gap) {

@@ -42,4 +42,5 @@ kairos_gtest(test_gjk_curved SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk_cu
 
 # Signed distance (EPA) against closed forms, the polytope oracle and the touching invariant.
 kairos_gtest(test_penetration SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_penetration.cpp
-             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_tilted_contacts.cpp LIBS kairos_core)
+             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_tilted_contacts.cpp
+             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_coaxial_depth.cpp LIBS kairos_core)
