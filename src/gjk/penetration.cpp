@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <type_traits>
 
@@ -105,8 +106,9 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
 // along which coaxial sides meet (two coincident cylinders took its 254 support calls to come
 // within 6e-4 of the depth, in about 0.5 ms). Taken when the axes are coaxial to within `bound`
 // (the offset across A's axis plus the angle between the axes times B's reach: the most either
-// moves a translation), which puts the answer within twice that of the depth: within the
-// tolerance of the size. False otherwise, or when the cores do not overlap.
+// moves a translation), which puts the answer within twice that of the depth: within rounding, or
+// within the tolerance of the depth (relative, as the expansion's stop). False otherwise, or when
+// the cores do not overlap.
 bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
                    double tolerance, CoreDepth& out) {
     const auto axial = [](const CoreOf& c) { return c.core == Core::Revolution || c.core == Core::Segment; };
@@ -130,7 +132,12 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
     // The angle between the axes (or the one and the other reversed) is at most pi/2 times the
     // sine, which is the axis's part across A's axis.
     const double bound = off + 1.5708 * std::hypot(axis_b.x, axis_b.y) * sb.reach;
-    if (!(2 * bound <= tolerance * (sa.reach + sb.reach))) return false;
+    // Within the rounding the poses carry (a few ulps of their coordinates and of the reaches: no
+    // method's answer is nearer), or within the tolerance of the depth (checked once it is known;
+    // the depth is at most twice the reaches).
+    const double noise = 64 * std::numeric_limits<double>::epsilon() *
+                         (sa.reach + sb.reach + max_abs(pose_a.translation) + max_abs(pose_b.translation));
+    if (!(2 * bound <= noise || 2 * bound <= 2 * tolerance * (sa.reach + sb.reach))) return false;
     // The half-plane: toward B's axis when it is off A's, else any.
     const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
     double candidates[12][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
@@ -148,6 +155,7 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
             if (d < best) best = d, out.n = u, out.point_a = pa, out.point_b = pb;
         }
         if (!(best > 0) || !std::isfinite(best)) return false;
+        if (!(2 * bound <= noise || 2 * bound * (1 + tolerance) <= tolerance * best)) return false;
         out.depth = best;
         out.iterations = 1;
         out.termination = Termination::RelativeError;
