@@ -95,6 +95,25 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
     return d;
 }
 
+// A core's axial section's corners (x across the axis, z along it; the section is symmetric in
+// x): a cylinder's rectangle, a cone's triangle (apex at +h), a segment's ends. Returns the count.
+int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
+    if (c.core == Core::Segment) {
+        const double h = segment_half_length(*c.shape);
+        x[0] = x[1] = 0, z[0] = -h, z[1] = h;
+        return 2;
+    }
+    const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
+    const double r = v.radius, h = v.half_height;
+    x[0] = -r, z[0] = -h, x[1] = r, z[1] = -h;
+    if (v.cone) {
+        x[2] = 0, z[2] = h;
+        return 3;
+    }
+    x[2] = r, z[2] = h, x[3] = -r, z[3] = h;
+    return 4;
+}
+
 // The depth of two overlapping coaxial cores among cylinders, cones and segments (capsules'), at
 // least one of them a cylinder or a cone, exact. About a common axis every direction turns into
 // one axial half-plane without changing the translation that separates the shapes along it, and
@@ -146,22 +165,56 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
         if (c->across > 0)
             for (const double x : {c->across, -c->across})
                 for (const double z : {c->up, -c->up}) candidates[n][0] = x, candidates[n][1] = z, ++n;
-    return with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-        double best = INFINITY;
+    double best = INFINITY;
+    int chosen = 0;
+    with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
         for (int i = 0; i < n; ++i) {
             const Vec3 u = candidates[i][0] * e + Vec3{0, 0, candidates[i][1]};
             Vec3 pa, pb;
             const double d = dot(u, pair(u, pa, pb));  // the translation of B along u that separates
-            if (d < best) best = d, out.n = u, out.point_a = pa, out.point_b = pb;
+            if (d < best) best = d, chosen = i;
         }
-        if (!(best > 0) || !std::isfinite(best)) return false;
-        if (!(2 * bound <= noise || 2 * bound * (1 + tolerance) <= tolerance * best)) return false;
-        out.depth = best;
-        out.iterations = 1;
-        out.termination = Termination::RelativeError;
-        out.flat = false;
-        return true;
     });
+    if (!(best > 0) || !std::isfinite(best)) return false;
+    if (!(2 * bound <= noise || 2 * bound * (1 + tolerance) <= tolerance * best)) return false;
+    // The deepest points: B moved by the depth along u touches A where A's section's feature
+    // along u (a vertex or an edge) meets B's along -u; across u, the middle of where they
+    // overlap. point_a is that contact, point_b it less the depth along u (the supports' own
+    // points lie anywhere on those features, and would not differ by the depth along u).
+    const double ux = candidates[chosen][0], uz = candidates[chosen][1];
+    double a_along = -INFINITY, a_lo = INFINITY, a_hi = -INFINITY, b_along = INFINITY, b_lo = INFINITY,
+           b_hi = -INFINITY;
+    const double flip = axis_b.z < 0 ? -1.0 : 1.0;
+    const double level = 64 * std::numeric_limits<double>::epsilon() * (sa.reach + sb.reach + max_abs(f.t));
+    for (int pass = 0; pass < 2; ++pass)
+        for (const bool of_a : {true, false}) {
+            double x[4], z[4];
+            const int count = axial_section(of_a ? ca : cb, x, z);
+            for (int k = 0; k < count; ++k) {
+                const double zk = of_a ? z[k] : flip * z[k] + f.t.z;  // B's, in A's frame
+                const double along = ux * x[k] + uz * zk, across = -uz * x[k] + ux * zk;
+                if (pass == 0) {
+                    if (of_a)
+                        a_along = std::fmax(a_along, along);
+                    else
+                        b_along = std::fmin(b_along, along);
+                } else if (of_a ? along >= a_along - level : along <= b_along + level) {
+                    double& lo = of_a ? a_lo : b_lo;
+                    double& hi = of_a ? a_hi : b_hi;
+                    lo = std::fmin(lo, across), hi = std::fmax(hi, across);
+                }
+            }
+        }
+    const double mid = 0.5 * (std::fmax(a_lo, b_lo) + std::fmin(a_hi, b_hi));
+    const double px = ux * a_along - uz * mid, pz = uz * a_along + ux * mid;
+    out.n = ux * e + Vec3{0, 0, uz};
+    out.point_a = px * e + Vec3{0, 0, pz};
+    out.point_b = out.point_a - best * out.n;
+    out.depth = best;
+    out.iterations = 1;
+    out.termination = Termination::RelativeError;
+    out.flat = false;
+    return true;
 }
 
 // The cores' separation along the unit axis n (A's frame, from A toward B): B's support value

@@ -72,6 +72,23 @@ struct Hull2 {
     }
 };
 
+// How far a world point lies from the surface of a core (kind, r, h) at `pose` grown by `pad`:
+// its distance, in the axial half-plane through it, to the section's boundary, less pad.
+double off_surface(Vec3 world, const Transform& pose, int kind, double r, double h, double pad) {
+    const Vec3 q = pose.apply_inverse(world);
+    const Real px = std::hypot(Real(q.x), Real(q.y)), pz = q.z;
+    const std::vector<P2> v = section(kind, r, h);
+    Real best = INFINITY;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const P2 a = v[i], b = v[(i + 1) % v.size()];
+        const Real ex = b.x - a.x, ez = b.z - a.z, len_sq = ex * ex + ez * ez;
+        Real s = len_sq > 0 ? ((px - a.x) * ex + (pz - a.z) * ez) / len_sq : 0;
+        s = std::clamp(s, Real(0), Real(1));
+        best = std::min(best, std::hypot(px - (a.x + s * ex), pz - (a.z + s * ez)));
+    }
+    return double(std::fabs(best - Real(pad)));
+}
+
 }  // namespace
 
 TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
@@ -94,12 +111,11 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                 const double pad_a = ka == 2 ? 0.5 * ra : (i % 2 ? 0.1 * size * u(rng) : 0.0);
                 const double pad_b = kb == 2 ? 0.5 * rb : (i % 4 < 2 ? 0.1 * size * u(rng) : 0.0);
                 const bool flip = i % 5 == 1;
-                // Coincident, shifted, or ends overlapping by 1e-6 of the length (shallow: the depth is
-                // along the axis, and far from the origin rounding leaves it to the expansion).
+                // Centred together (copies or not), shifted, or ends overlapping by 1e-6 of the length.
                 const double side = u(rng) < 0.5 ? -1.0 : 1.0;
-                const double dz = i % 7 == 3           ? side * (ha + hb) * (1 - 1e-6)
-                                  : same && i % 2 == 0 ? 0.0
-                                                       : 0.95 * (ha + hb) * (2 * u(rng) - 1);
+                const double dz = i % 7 == 3                           ? side * (ha + hb) * (1 - 1e-6)
+                                  : (same && i % 2 == 0) || i % 7 == 5 ? 0.0
+                                                                       : 0.95 * (ha + hb) * (2 * u(rng) - 1);
                 if (same && ka == kb && dz == 0 && !flip) ++coincident;
 
                 // The shapes: cores (a capsule's core is its segment) and their rounded forms.
@@ -156,6 +172,16 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                     const Real along = m.support(std::hypot(n.x, n.y), n.z);
                     if (!(along - core_depth <= tol)) fail("depth along the axis", double(along), double(core_depth));
                     if (s.iterations > 64) fail("support calls", s.iterations, 64);
+                    // The deepest points: point_b - point_a = distance * axis, each on its shape's
+                    // surface (its section's boundary, at its radius).
+                    const Vec3 gap = (s.point_b - s.point_a) - s.distance * s.axis;
+                    if (!(length(gap) <= tol)) fail("point_b - point_a - distance * axis", length(gap), 0);
+                    const double on_a = order == 0 ? off_surface(s.point_a, px, ka, ra, ha, pad_a)
+                                                   : off_surface(s.point_b, py, ka, ra, ha, pad_a);
+                    const double on_b = order == 0 ? off_surface(s.point_b, py, kb, rb, hb, pad_b)
+                                                   : off_surface(s.point_a, px, kb, rb, hb, pad_b);
+                    if (!(on_a <= tol)) fail("A's deepest point off its surface by", on_a, 0);
+                    if (!(on_b <= tol)) fail("B's deepest point off its surface by", on_b, 0);
                 }
             }
     std::printf("coaxial shapes: %d cases (%d coincident copies), worst signed distance error %.3g of the size\n",
