@@ -52,14 +52,14 @@ CoreDistance core_distance(const kernels::CoreOf& ca, const Transform& pose_a, c
                            HeldTetrahedron* held = nullptr);
 
 // GJK's gap between shapes without radii (or between the cores of shapes with radii) when a
-// rounding rule stopped it (unproven_rounding_stop) is no verdict when its own axis (unit, A's frame) shows the shapes overlapping by
-// more than rounding: 2^-46 of the offset plus the support point, a few units in the last place of
-// the support value. Faces tilted 1e-9 against each other, 1e-12 apart at one end, made A - B a
-// slab of nearly coplanar facets: GJK stopped 2e-11 of the size "apart", along an axis on which
-// the boxes overlapped by 2e-10, for boxes a vertex of which lay 1.2e-10 inside the other (and
-// 1e-13 "apart" for a vertex 1e-12 inside). The expansion then decides: a depth past the same
-// rounding is the overlap, with its normal (A's frame); else depth 0. iterations: its support
-// calls.
+// rounding rule stopped it (unproven_rounding_stop) is no verdict when its own axis (unit, A's
+// frame) shows the shapes overlapping by more than rounding: 2^-46 of the offset plus the support
+// point, a few units in the last place of the support value. Faces tilted 1e-9 against each
+// other, 1e-12 apart at one end, made A - B a slab of nearly coplanar facets: GJK stopped 2e-11
+// of the size "apart", along an axis on which the boxes overlapped by 2e-10, for boxes a vertex
+// of which lay 1.2e-10 inside the other (and 1e-13 "apart" for a vertex 1e-12 inside). The
+// expansion then decides: a depth past the same rounding is the overlap, with its normal (A's
+// frame); else depth 0. iterations: its support calls.
 epa_detail::CoreDepth overlap_behind_rounding_stop(const kernels::CoreOf& ca, const Transform& pose_a,
                                                    const kernels::CoreOf& cb, const Transform& pose_b, Vec3 axis,
                                                    double tolerance);
