@@ -114,20 +114,22 @@ int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
     return 4;
 }
 
-// The depth of two overlapping coaxial cores among cylinders, cones and segments (capsules'), at
-// least one of them a cylinder or a cone, exact. About a common axis every direction turns into
-// one axial half-plane without changing the translation that separates the shapes along it, and
-// in that plane each core is its axial section: a rectangle, a triangle or a segment on the axis.
-// The least translation is then that of two polygons, along a normal of one of their edges (the
-// edges of A's section and of B's, turned over: both signs of each are tried). Each candidate's
-// translation is measured with the shapes' own supports, so it is a translation that separates
-// them whatever their placement: never below the depth. The expansion can only approach the circle
-// along which coaxial sides meet (two coincident cylinders took its 254 support calls to come
-// within 6e-4 of the depth, in about 0.5 ms). Taken when the axes are coaxial to within `bound`
-// (the offset across A's axis plus the angle between the axes times B's reach: the most either
-// moves a translation), which puts the answer within twice that of the depth: within rounding, or
-// within the tolerance of the depth (relative, as the expansion's stop). False otherwise, or when
-// the cores do not overlap.
+// The depth of two overlapping cores among cylinders, cones and segments (capsules') with parallel
+// axes, at least one of them a cylinder or a cone, exact. Their Minkowski difference is then itself
+// a body of revolution, about the axis through the offset between theirs, whose axial section is
+// the sum of theirs (a revolution body's section through its axis is also its projection on that
+// plane). The origin's nearest boundary point lies in the axial half-plane through the origin
+// (turning a point about the axis into it brings it no nearer), where the body is a polygon: the
+// least translation is along a normal of one of its edges, which are the edges of A's section and of
+// B's, in the plane through both axes (both signs of each are tried). Each candidate's translation
+// is measured with the shapes' own supports, so it is a translation that separates them whatever
+// their placement: never below the depth. The expansion can only approach the circle along which
+// coaxial sides meet (two coincident cylinders took its 254 support calls to come within 6e-4 of
+// the depth, in about 0.5 ms), and approaches a parallel pair's rounded side slowly too. Taken when
+// the axes are parallel to within `bound` (the angle between them times B's reach: the most turning
+// B about its centre moves a support value), which puts the answer within twice that of the depth:
+// within rounding, or within the tolerance of the depth (relative, as the expansion's stop). False
+// otherwise, or when the cores do not overlap.
 bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
                    double tolerance, CoreDepth& out) {
     const auto axial = [](const CoreOf& c) { return c.core == Core::Revolution || c.core == Core::Segment; };
@@ -150,14 +152,14 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
     const double off = std::hypot(f.t.x, f.t.y);
     // The angle between the axes (or the one and the other reversed) is at most pi/2 times the
     // sine, which is the axis's part across A's axis.
-    const double bound = off + 1.5708 * std::hypot(axis_b.x, axis_b.y) * sb.reach;
+    const double bound = 1.5708 * std::hypot(axis_b.x, axis_b.y) * sb.reach;
     // Within the rounding the poses carry (a few ulps of their coordinates and of the reaches: no
     // method's answer is nearer), or within the tolerance of the depth (checked once it is known;
     // the depth is at most twice the reaches).
     const double noise = 64 * std::numeric_limits<double>::epsilon() *
                          (sa.reach + sb.reach + max_abs(pose_a.translation) + max_abs(pose_b.translation));
     if (!(2 * bound <= noise || 2 * bound <= 2 * tolerance * (sa.reach + sb.reach))) return false;
-    // The half-plane: toward B's axis when it is off A's, else any.
+    // The plane through both axes (x toward B's, from A's), any through A's when they coincide.
     const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
     double candidates[12][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     int n = 4;
@@ -191,8 +193,9 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
             double x[4], z[4];
             const int count = axial_section(of_a ? ca : cb, x, z);
             for (int k = 0; k < count; ++k) {
-                const double zk = of_a ? z[k] : flip * z[k] + f.t.z;  // B's, in A's frame
-                const double along = ux * x[k] + uz * zk, across = -uz * x[k] + ux * zk;
+                const double xk = of_a ? x[k] : x[k] + off,
+                             zk = of_a ? z[k] : flip * z[k] + f.t.z;  // B's, in A's frame
+                const double along = ux * xk + uz * zk, across = -uz * xk + ux * zk;
                 if (pass == 0) {
                     if (of_a)
                         a_along = std::fmax(a_along, along);

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Coaxial cylinders, cones and capsules overlapping, plain or rounded by balls, coincident or
-// shifted along the common axis, the second turned about it or reversed: the signed distance
-// against the depth of their axial sections. About a common axis the shapes are their sections
-// turned, so the depth is that of two polygons (a rectangle, a triangle, a segment), computed here
-// from the Minkowski difference of their vertices, hulled by brute force, in long double. The
-// expansion approached the circle where coaxial sides meet to 6e-4 of the depth in 254 support
-// calls (coaxial_depth, penetration.cpp). Sizes 1e-3 to 1e3, up to 1e4 sizes from the origin,
-// both argument orders.
+// Cylinders, cones and capsules with parallel axes overlapping, plain or rounded by balls:
+// coaxial (coincident or shifted along the common axis) or with the axes from 1e-12 of the size to
+// most of the radii apart, the second turned about its axis or reversed. The signed distance
+// against the depth of their axial sections: A - B is then a body of revolution whose section is
+// the sum of theirs, so the depth is that of a polygon, computed here from the Minkowski difference
+// of their sections' vertices, hulled by brute force, in long double. The expansion approached the
+// circle where coaxial sides meet to 6e-4 of the depth in 254 support calls (coaxial_depth,
+// penetration.cpp). Sizes 1e-3 to 1e3, up to 1e4 sizes from the origin, both argument orders.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -96,7 +96,7 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     const char* names[] = {"cylinder", "cone", "capsule"};
-    int cases = 0, failures = 0, coincident = 0;
+    int cases = 0, failures = 0, coincident = 0, apart = 0, offset = 0;
     double worst = 0;
     for (const double size : {1e-3, 1.0, 1e3})
         for (const double far : {0.0, 1e4})
@@ -116,7 +116,13 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                 const double dz = i % 7 == 3                           ? side * (ha + hb) * (1 - 1e-6)
                                   : (same && i % 2 == 0) || i % 7 == 5 ? 0.0
                                                                        : 0.95 * (ha + hb) * (2 * u(rng) - 1);
-                if (same && ka == kb && dz == 0 && !flip) ++coincident;
+                // B's axis across A's by `off` in a third of the cases (parallel axes): from a rounding
+                // of the size to most of the radii.
+                const double off_scale = i % 3 == 2 ? std::array{1e-12, 1e-6, 1e-3, 0.3, 0.9}[i % 5] : 0.0;
+                const double off = off_scale * std::min(ra + rb, 2 * size) * (0.5 + 0.5 * u(rng));
+                const double phi = 6.283185307179586 * u(rng);
+                const Vec3 across{off * std::cos(phi), off * std::sin(phi), 0};
+                if (same && ka == kb && dz == 0 && !flip && off == 0) ++coincident;
 
                 // The shapes: cores (a capsule's core is its segment) and their rounded forms.
                 const auto core = [](int kind, double r, double h) -> gjk_test::ShapePtr {
@@ -135,26 +141,36 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                 const Transform pa = make_transform(far * size * random_unit(rng), qa);
                 const Quat qb = qa * axis_angle({1, 0, 0}, flip ? 3.141592653589793 : 0.0) *
                                 axis_angle({0, 0, 1}, 6.283185307179586 * u(rng));
-                const Transform pb = make_transform(pa.apply({0, 0, dz}), qb);
+                const Transform pb = make_transform(pa.apply(across + Vec3{0, 0, dz}), qb);
 
-                // Truth: the sections' Minkowski difference, B's section reversed with it and at dz.
-                Hull2 m;
+                // Truth: A - B is a body of revolution about the axis through the offset, whose
+                // section is the sections' Minkowski difference (B's reversed with it and at dz): m
+                // about its own axis, and `placed` in the plane through both axes, where the origin
+                // lies `off` from it (x toward B's axis).
+                Hull2 m, placed;
                 for (const P2& p : section(ka, ra, ha))
                     for (const P2& q : section(kb, rb, hb))
-                        for (const double mirror : {1.0, -1.0})
-                            m.pts.push_back({p.x - mirror * q.x, p.z - ((flip ? -q.z : q.z) + Real(dz))});
-                const Real core_depth = m.depth();
-                ASSERT_GT(core_depth, 0) << "the cores overlap by construction; case " << i << " seed " << seed;
+                        for (const double mirror : {1.0, -1.0}) {
+                            const P2 d{p.x - mirror * q.x, p.z - ((flip ? -q.z : q.z) + Real(dz))};
+                            m.pts.push_back(d);
+                            placed.pts.push_back({d.x - Real(off), d.z});
+                        }
+                const Real core_depth = placed.depth();
+                if (!(core_depth > 0)) {  // offset clear of a cone's slant or a segment's end
+                    ++apart;
+                    continue;
+                }
                 const double truth = -double(core_depth + Real(pad_a) + Real(pad_b));
                 const double coords = max_abs(pa.translation) + max_abs(pb.translation);
                 const double tol = 1e-12 * size + 1e-14 * coords;
                 ++cases;
+                if (off > 0) ++offset;
                 auto fail = [&](const char* rule, double got, double want) {
                     if (++failures <= 10)
                         ADD_FAILURE() << names[ka] << "/" << names[kb] << " " << rule << ": got " << got << ", want "
-                                      << want << " (dz " << dz << ", flip " << flip << ", pads " << pad_a << " "
-                                      << pad_b << "); size " << size << " far " << far << " case " << i << " seed "
-                                      << seed;
+                                      << want << " (dz " << dz << ", off " << off << ", flip " << flip << ", pads "
+                                      << pad_a << " " << pad_b << "); size " << size << " far " << far << " case " << i
+                                      << " seed " << seed;
                 };
                 for (int order = 0; order < 2; ++order) {
                     const Shape& x = order == 0 ? a : b;
@@ -169,7 +185,8 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                     // The axis achieves the depth: the sections' translation along it (in A's frame,
                     // its part across the axis turned into the half-plane, the sign toward B) is it.
                     const Vec3 n = pa.to_local_direction(order == 0 ? s.axis : -1.0 * s.axis);
-                    const Real along = m.support(std::hypot(n.x, n.y), n.z);
+                    const Real along = m.support(std::hypot(Real(n.x), Real(n.y)), n.z) -
+                                       (Real(n.x) * across.x + Real(n.y) * across.y);
                     if (!(along - core_depth <= tol)) fail("depth along the axis", double(along), double(core_depth));
                     if (s.iterations > 64) fail("support calls", s.iterations, 64);
                     // The deepest points: point_b - point_a = distance * axis, each on its shape's
@@ -184,8 +201,12 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                     if (!(on_b <= tol)) fail("B's deepest point off its surface by", on_b, 0);
                 }
             }
-    std::printf("coaxial shapes: %d cases (%d coincident copies), worst signed distance error %.3g of the size\n",
-                cases, coincident, worst);
+    std::printf(
+        "shapes with parallel axes: %d cases (%d coincident copies, %d with the axes apart; %d overlap-free "
+        "drawings skipped), worst signed distance error %.3g of the size\n",
+        cases, coincident, offset, apart, worst);
     EXPECT_EQ(failures, 0) << "seed " << seed;
     EXPECT_GT(coincident, cases / 20) << "seed " << seed;
+    EXPECT_GT(offset, cases / 5) << "seed " << seed;
+    EXPECT_LT(apart, cases / 10) << "seed " << seed;
 }

@@ -292,9 +292,12 @@ TEST(Penetration, CurvedAndDeepPairs) {
 
 // Two cylinders with parallel axes: A - B is the cylinder of radius ra + rb and half height
 // ha + hb (a disc plus a disc, a segment plus a segment), so the signed distance has a closed form
-// for any offset and any turn of B about the shared axis (or upside down). Where the curved side
-// gives the depth the expansion runs long on a surface curved one way only (its near-face list and
-// its upper-bound stop in use); the axial cases end on the flat caps. Checked at the default
+// for any offset and any turn of B about the shared axis (or upside down). As cylinders they take
+// the library's own closed form for parallel axes (coaxial_depth, penetration.cpp); as general
+// shapes (each the hull of the cylinder with itself: the same support, through the general
+// mapping) they go to the expansion, which where the curved side gives the depth runs long on a
+// surface curved one way only (its near-face list and its upper-bound stop in use); the axial
+// cases end on the flat caps. Checked at the default
 // tolerance (1e-10, relative to the depth) and at 1e-12: the value against the closed form, and
 // the answer's own certificate, exact whatever GJK says near contact: B moved by the depth along
 // the axis has its support plane on A's (parallel cylinders touching along a line are where GJK's
@@ -308,7 +311,7 @@ TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
     const uint64_t seed = 331;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    int cases = 0, overlapping = 0, curved_long = 0, failures = 0;
+    int cases = 0, overlapping = 0, curved_long = 0, failures = 0, closed_long = 0;
     int guard_stopped[2] = {0, 0};  // overlapping answers at 1e-10, at 1e-12
     int beyond_usual = 0;           // answers that took more than the usual 128 expansion steps
     double worst = 0;
@@ -319,7 +322,8 @@ TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
     for (int i = 0; i < 300; ++i) {
         const double ra = 0.2 + u(rng), ha = 0.2 + u(rng), rb = 0.2 + u(rng), hb = 0.2 + u(rng);
         const double big_r = ra + rb, big_h = ha + hb, size = std::max(big_r, big_h);
-        CylinderShape ca(ra, ha), cb(rb, hb);
+        const CylinderShape ca(ra, ha), cb(rb, hb);
+        const HullOfTwoShape ga(ca, ca), gb(cb, cb);
         const Quat qa = random_quat(rng);
         const double turn = 2 * M_PI * u(rng);
         Quat about_axis{0, 0, std::sin(turn / 2), std::cos(turn / 2)};
@@ -332,15 +336,20 @@ TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
         const double radial = big_r - rho, axial = big_h - std::fabs(dz);
         const double truth = radial > 0 && axial > 0 ? -std::min(radial, axial)
                                                      : std::hypot(std::max(-radial, 0.0), std::max(-axial, 0.0));
-        for (int order = 0; order < 2; ++order) {
-            const Shape& p = order ? static_cast<const Shape&>(cb) : ca;
-            const Shape& q = order ? static_cast<const Shape&>(ca) : cb;
-            const Transform& xp = order ? xb : xa;
-            const Transform& xq = order ? xa : xb;
+        for (int order = 0; order < 4; ++order) {
+            const bool general = order >= 2;
+            const Shape& shape_a = general ? static_cast<const Shape&>(ga) : ca;
+            const Shape& shape_b = general ? static_cast<const Shape&>(gb) : cb;
+            const Shape& p = order % 2 ? shape_b : shape_a;
+            const Shape& q = order % 2 ? shape_a : shape_b;
+            const Transform& xp = order % 2 ? xb : xa;
+            const Transform& xq = order % 2 ? xa : xb;
             for (double tolerance : {1e-10, 1e-12}) {
                 char buf[160];
-                std::snprintf(buf, sizeof buf, "parallel cylinders seed %llu case %d order %d tolerance %.0g truth %.17g",
-                              static_cast<unsigned long long>(seed), i, order, tolerance, truth);
+                std::snprintf(buf, sizeof buf,
+                              "parallel cylinders seed %llu case %d order %d (%s) tolerance %.0g truth %.17g",
+                              static_cast<unsigned long long>(seed), i, order % 2, general ? "general" : "cylinders",
+                              tolerance, truth);
                 const std::string at = buf;
                 const DistanceResult r = signed_distance(p, xp, q, xq, tolerance, 256);
                 ++cases;
@@ -353,8 +362,12 @@ TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
                 const double allowed = tolerance * std::fabs(truth) + 1e-13 * size;
                 if (!(err <= allowed)) fail(describe("signed distance off", r.distance - truth, at));
                 if (truth >= 0 || tolerance != 1e-10) continue;
-                ++overlapping;
-                if (radial < axial && r.iterations >= 20) ++curved_long;
+                if (!general) {  // the closed form: GJK's calls and one
+                    closed_long += r.iterations > 64;
+                } else {
+                    ++overlapping;
+                    if (radial < axial && r.iterations >= 20) ++curved_long;
+                }
                 if (!(std::fabs(length(r.axis) - 1) <= 1e-12)) fail(describe("axis not unit", length(r.axis), at));
                 // B moved by the depth along the axis: its support plane on A's (the separation
                 // along the axis, from the supports; 0 when the axis is a minimum translation).
@@ -373,12 +386,14 @@ TEST(Penetration, ParallelCylindersAgainstTheirClosedForm) {
         }
     }
     std::sort(errors.begin(), errors.end());
-    std::printf("parallel cylinders: %d signed distances, %d overlapping at 1e-10, %d of them on the curved side "
-                "with >= 20 support calls; %d answers past 128 calls; guard-stopped: %d at 1e-10, %d at 1e-12; "
-                "error median %.3g, max %.3g of the size\n",
-                cases, overlapping, curved_long, beyond_usual, guard_stopped[0], guard_stopped[1],
-                errors[errors.size() / 2], worst);
+    std::printf(
+        "parallel cylinders: %d signed distances (half as general shapes), %d of those overlapping at "
+        "1e-10, %d of them on the curved side with >= 20 support calls; %d answers past 128 calls; "
+        "guard-stopped: %d at 1e-10, %d at 1e-12; error median %.3g, max %.3g of the size\n",
+        cases, overlapping, curved_long, beyond_usual, guard_stopped[0], guard_stopped[1], errors[errors.size() / 2],
+        worst);
     EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_EQ(closed_long, 0) << "cylinders past 64 support calls (not the closed form); seed " << seed;
     // The family reaches the long curved expansions and the caps, and the guard only rarely.
     EXPECT_GT(curved_long, 40) << "seed " << seed;
     EXPECT_LT(curved_long, overlapping) << "seed " << seed;
