@@ -6,6 +6,7 @@
 #include "gjk/closed_form_distance.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/loop_rules.hpp"
+#include "gjk/parallel_axes.hpp"
 #include "gjk/seed.hpp"
 #include "gjk/simplex.hpp"
 #include "gjk/support_kernels.hpp"
@@ -437,7 +438,7 @@ CoreDistance core_distance(const CoreOf& ca, const Transform& pose_a, const Core
     if (closed_form_pair(ca, cb)) {
         l = closed_form_distance(ca, pose_a, cb, pose_b, c.center_offset);
         l.intersecting = !(l.core > 0);
-    } else {
+    } else if (!parallel_axes_distance(ca, pose_a, cb, pose_b, tolerance, l, c.center_offset)) {
         l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             c.center_offset = pair.t;
             return distance_query(pair, 0.0, tolerance, max_iterations, held);
@@ -464,14 +465,19 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     const CoreOf ca = classify(a), cb = classify(b);
     const double radius_a = ca.radius, radius_b = cb.radius;
     Vec3 center_offset;
-    const LocalDistance l =
-        closed_form_pair(ca, cb)
-            ? closed_form_distance(ca, pose_a, cb, pose_b, center_offset)
-            : with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
-                  center_offset = pair.t;
-                  return distance_query(pair, margin, tolerance, max_iterations, held, seed);
-              });
-    if (seed != nullptr && closed_form_pair(ca, cb)) seed->count = 0;
+    LocalDistance l;
+    bool closed = closed_form_pair(ca, cb);  // no simplex to seed the next query with
+    if (closed) {
+        l = closed_form_distance(ca, pose_a, cb, pose_b, center_offset);
+    } else if (parallel_axes_distance(ca, pose_a, cb, pose_b, tolerance, l, center_offset)) {
+        closed = true;
+    } else {
+        l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {
+            center_offset = pair.t;
+            return distance_query(pair, margin, tolerance, max_iterations, held, seed);
+        });
+    }
+    if (seed != nullptr && closed) seed->count = 0;
 
     DistanceResult r;
     r.iterations = l.iterations;

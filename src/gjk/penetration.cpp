@@ -13,6 +13,7 @@
 #include "gjk/closed_forms.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/expander.hpp"
+#include "gjk/parallel_axes.hpp"
 #include "gjk/support_kernels.hpp"
 
 namespace kairos {
@@ -95,25 +96,6 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
     return d;
 }
 
-// A core's axial section's corners (x across the axis, z along it; the section is symmetric in
-// x): a cylinder's rectangle, a cone's triangle (apex at +h), a segment's ends. Returns the count.
-int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
-    if (c.core == Core::Segment) {
-        const double h = segment_half_length(*c.shape);
-        x[0] = x[1] = 0, z[0] = -h, z[1] = h;
-        return 2;
-    }
-    const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
-    const double r = v.radius, h = v.half_height;
-    x[0] = -r, z[0] = -h, x[1] = r, z[1] = -h;
-    if (v.cone) {
-        x[2] = 0, z[2] = h;
-        return 3;
-    }
-    x[2] = r, z[2] = h, x[3] = -r, z[3] = h;
-    return 4;
-}
-
 // The depth of two overlapping cores among cylinders, cones and segments (capsules') with parallel
 // axes, at least one of them a cylinder or a cone, exact. Their Minkowski difference is then itself
 // a body of revolution, about the axis through the offset between theirs, whose axial section is
@@ -132,8 +114,7 @@ int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
 // otherwise, or when the cores do not overlap.
 bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
                    double tolerance, CoreDepth& out) {
-    const auto axial = [](const CoreOf& c) { return c.core == Core::Revolution || c.core == Core::Segment; };
-    if (!axial(ca) || !axial(cb) || (ca.core != Core::Revolution && cb.core != Core::Revolution)) return false;
+    if (!gjk_detail::axial_pair(ca, cb)) return false;
     // A core's reach from its origin, and its cone's slant normals' components (zero: no cone).
     struct Section {
         double reach, across = 0, up = 0;
@@ -191,7 +172,7 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
     for (int pass = 0; pass < 2; ++pass)
         for (const bool of_a : {true, false}) {
             double x[4], z[4];
-            const int count = axial_section(of_a ? ca : cb, x, z);
+            const int count = gjk_detail::axial_section(of_a ? ca : cb, x, z);
             for (int k = 0; k < count; ++k) {
                 const double xk = of_a ? x[k] : x[k] + off,
                              zk = of_a ? z[k] : flip * z[k] + f.t.z;  // B's, in A's frame

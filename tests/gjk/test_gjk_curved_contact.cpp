@@ -261,6 +261,11 @@ TEST(GjkCurvedContact, SliverHoldingTheOriginIsFull) {
 // carry: along a contact line the estimate v = gap n + dz e_z has |v| within tolerance of the gap
 // for any |dz| <= sqrt(2 tol) gap, so the axis tilts by up to sqrt(2 tol) radians (1.4e-5 at the
 // default 1e-10; 2.5e-6 seen), plus the rounding tilt eps size / distance, times the size.
+//
+// As cylinders the pairs take the closed form for parallel axes (gjk/parallel_axes.hpp): one
+// support call, the distance and the axis exact to rounding. The loop is checked on the same
+// cylinders as general shapes (each the hull of the cylinder with itself: the same support,
+// through the general mapping).
 TEST(GjkCurvedContact, ParallelCylindersNearALineContact) {
     const uint64_t seed = 2611;
     std::mt19937_64 rng(seed);
@@ -270,13 +275,14 @@ TEST(GjkCurvedContact, ParallelCylindersNearALineContact) {
         const double x = g(rng), y = g(rng), z = g(rng), w = g(rng), l = std::sqrt(x * x + y * y + z * z + w * w);
         return Quat{x / l, y / l, z / l, w / l};
     };
-    int cases = 0, rounding_stops = 0, failures = 0;
-    double worst_distance = 0, worst_axis = 0;
+    int cases = 0, rounding_stops = 0, failures = 0, closed = 0;
+    double worst_distance = 0, worst_axis = 0, worst_closed = 0;
     for (const double gap : {1e-12, 1e-10, 1e-9, 1e-8, 1e-6}) {
         for (int i = 0; i < 300; ++i) {
             const double ra = 0.2 + u(rng), ha = 0.2 + u(rng), rb = 0.2 + u(rng), hb = 0.2 + u(rng);
             const double size = std::max(ra + rb, ha + hb);
-            CylinderShape ca(ra, ha), cb(rb, hb);
+            const CylinderShape ca(ra, ha), cb(rb, hb);
+            const HullOfTwoShape ga(ca, ca), gb(cb, cb);
             const Quat qa = random_quat();
             const double turn = 2 * std::numbers::pi * u(rng), phi = 2 * std::numbers::pi * u(rng);
             const Quat about{0, 0, std::sin(turn / 2), std::cos(turn / 2)};
@@ -289,37 +295,54 @@ TEST(GjkCurvedContact, ParallelCylindersNearALineContact) {
             sa.kind = sb.kind = peer::Kind::Cylinder;
             sa.a = ra, sa.b = ha, sa.pose = xa;
             sb.a = rb, sb.b = hb, sb.pose = xb;
-            for (int order = 0; order < 2; ++order) {
-                const Shape& p = order ? static_cast<const Shape&>(cb) : ca;
-                const peer::Spec& sp = order ? sb : sa;
-                const peer::Spec& sq = order ? sa : sb;
-                const Shape& q = order ? static_cast<const Shape&>(ca) : cb;
-                const Transform& xp = order ? xb : xa;
-                const Transform& xq = order ? xa : xb;
+            for (int order = 0; order < 4; ++order) {
+                const bool general = order >= 2;
+                const Shape& shape_a = general ? static_cast<const Shape&>(ga) : ca;
+                const Shape& shape_b = general ? static_cast<const Shape&>(gb) : cb;
+                const Shape& p = order % 2 ? shape_b : shape_a;
+                const peer::Spec& sp = order % 2 ? sb : sa;
+                const peer::Spec& sq = order % 2 ? sa : sb;
+                const Shape& q = order % 2 ? shape_a : shape_b;
+                const Transform& xp = order % 2 ? xb : xa;
+                const Transform& xq = order % 2 ? xa : xb;
                 const DistanceResult r = gjk_distance(p, xp, q, xq, 1e-10, 256);
-                ++cases;
-                rounding_stops += r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress;
+                if (general) {
+                    ++cases;
+                    rounding_stops +=
+                        r.termination == Termination::JohnsonFailed || r.termination == Termination::NoProgress;
+                }
                 const Vec3 n = r.axis;
                 const double along = dot(n, peer::world_support(sq, -n) - peer::world_support(sp, n));
                 const double distance_error = std::fabs(r.distance - truth) / size;
                 const double axis_error = std::fabs(along - truth) / size;
                 const double axis_allowed = 2 * std::sqrt(2 * 1e-10) + 1e-15 * size / truth;
-                worst_distance = std::max(worst_distance, distance_error);
-                worst_axis = std::max(worst_axis, axis_error);
-                const bool ok = !r.intersecting && distance_error <= 2e-10 && axis_error <= axis_allowed &&
+                if (general) {
+                    worst_distance = std::max(worst_distance, distance_error);
+                    worst_axis = std::max(worst_axis, axis_error);
+                } else {
+                    closed += r.iterations == 1;
+                    worst_closed = std::max({worst_closed, distance_error, axis_error});
+                }
+                // The closed form: the poses' rounding (a few eps of their coordinates, about 1).
+                const bool ok = !r.intersecting && distance_error <= (general ? 2e-10 : 1e-14) &&
+                                axis_error <= (general ? axis_allowed : 1e-14) &&
                                 std::fabs(length(r.point_b - r.point_a) - r.distance) <= 1e-12 * size;
                 if (!ok && ++failures <= 10)
                     ADD_FAILURE() << "seed " << seed << " gap " << gap << " case " << i << " order " << order
-                                  << ": distance " << r.distance << " (truth " << truth << "), intersecting "
-                                  << r.intersecting << ", separation along the axis " << along << ", witness gap "
+                                  << (general ? " (general)" : " (cylinders)") << ": distance " << r.distance
+                                  << " (truth " << truth << "), intersecting " << r.intersecting
+                                  << ", separation along the axis " << along << ", witness gap "
                                   << length(r.point_b - r.point_a) << ", termination " << int(r.termination);
             }
         }
     }
-    std::printf("parallel cylinders near a line contact: %d distances, %d ended on a rounding rule; largest distance "
-                "error %.3g, largest axis-certificate error %.3g of the size\n",
-                cases, rounding_stops, worst_distance, worst_axis);
+    std::printf(
+        "parallel cylinders near a line contact: %d distances of general shapes, %d ended on a rounding "
+        "rule; largest distance error %.3g, largest axis-certificate error %.3g of the size; as cylinders, "
+        "%d of %d in closed form, largest error %.3g\n",
+        cases, rounding_stops, worst_distance, worst_axis, closed, cases, worst_closed);
     EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_EQ(closed, cases) << "seed " << seed;
     // The family reaches the rounding limit it is about (most runs), and not only it.
     EXPECT_GT(rounding_stops, cases / 2) << "seed " << seed;
     EXPECT_LT(rounding_stops, cases) << "seed " << seed;

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// Distance of cores with parallel axes from their axial sections (parallel_axes.hpp).
+#include "gjk/parallel_axes.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "gjk/closed_forms.hpp"
+
+namespace kairos::gjk_detail {
+
+using kernels::Core;
+using kernels::CoreOf;
+
+bool axial_pair(const CoreOf& ca, const CoreOf& cb) {
+    const auto axial = [](const CoreOf& c) { return c.core == Core::Revolution || c.core == Core::Segment; };
+    return axial(ca) && axial(cb) && (ca.core == Core::Revolution || cb.core == Core::Revolution);
+}
+
+int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
+    if (c.core == Core::Segment) {
+        const double h = kernels::segment_half_length(*c.shape);
+        x[0] = x[1] = 0, z[0] = -h, z[1] = h;
+        return 2;
+    }
+    const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
+    const double r = v.radius, h = v.half_height;
+    x[0] = -r, z[0] = -h, x[1] = r, z[1] = -h;
+    if (v.cone) {
+        x[2] = 0, z[2] = h;
+        return 3;
+    }
+    x[2] = r, z[2] = h, x[3] = -r, z[3] = h;
+    return 4;
+}
+
+namespace {
+
+struct P2 {
+    double x, z;
+};
+
+// From the point p to the segment [a, b]: the distance, and the unit direction toward the
+// segment's nearest point. Within the segment, its line's normal and p's offset from the line
+// (the difference of p and its foot would tilt by rounding over a gap 1e-12 of the size: 1e-4 rad).
+struct Toward {
+    double d;
+    P2 n;
+};
+Toward toward(P2 a, P2 b, P2 p) {
+    const double ex = b.x - a.x, ez = b.z - a.z, ee = ex * ex + ez * ez;
+    const double s = ee > 0 ? ((p.x - a.x) * ex + (p.z - a.z) * ez) / ee : 0;
+    if (s > 0 && s < 1) {
+        const double len = std::sqrt(ee);
+        P2 n{ez / len, -ex / len};
+        double d = n.x * (a.x - p.x) + n.z * (a.z - p.z);
+        if (d < 0) d = -d, n = {-n.x, -n.z};
+        return {d, n};
+    }
+    const P2 q = s <= 0 ? a : b;
+    const double d = std::hypot(q.x - p.x, q.z - p.z);
+    return {d, d > 0 ? P2{(q.x - p.x) / d, (q.z - p.z) / d} : P2{0, 0}};
+}
+
+}  // namespace
+
+bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                            double tolerance, LocalDistance& out, Vec3& center_offset) {
+    if (!axial_pair(ca, cb)) return false;
+    const kernels::RelativeFrame f = kernels::relative_frame(pose_a, pose_b);
+    const Vec3 axis_b = f.r.col(2);
+    double xa[4], za[4], xb[4], zb[4];
+    const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
+    double reach_a = 0, reach_b = 0;
+    for (int k = 0; k < na; ++k) reach_a = std::fmax(reach_a, std::hypot(xa[k], za[k]));
+    for (int k = 0; k < nb; ++k) reach_b = std::fmax(reach_b, std::hypot(xb[k], zb[k]));
+    // Turning B about its centre by the angle between the axes (at most pi/2 times the sine, the
+    // axis's part across A's; or the one and the other reversed) moves its support values by at
+    // most that times its reach, and the distance with them.
+    const double bound = 1.5708 * std::hypot(axis_b.x, axis_b.y) * reach_b;
+    const double noise = 64 * std::numeric_limits<double>::epsilon() *
+                         (reach_a + reach_b + max_abs(pose_a.translation) + max_abs(pose_b.translation));
+    if (!(2 * bound <= noise || 2 * bound <= tolerance * (reach_a + reach_b))) return false;
+    // The plane through both axes: x toward B's axis, from A's; any through A's when they coincide.
+    const double off = std::hypot(f.t.x, f.t.y);
+    const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
+    const double flip = axis_b.z < 0 ? -1.0 : 1.0;
+    P2 a[4], b[4];
+    for (int k = 0; k < na; ++k) a[k] = {xa[k], za[k]};
+    for (int k = 0; k < nb; ++k) b[k] = {xb[k] + off, flip * zb[k] + f.t.z};
+    // The sections' closest points: between two convex polygons apart, a corner of one and the
+    // nearest point of an edge of the other. n: from A's section toward B's.
+    double best = INFINITY;
+    P2 corner{}, n{};
+    bool of_a = true;
+    for (int pass = 0; pass < 2; ++pass) {
+        const P2* corners = pass == 0 ? a : b;
+        const P2* edges = pass == 0 ? b : a;
+        const int nc = pass == 0 ? na : nb, ne = pass == 0 ? nb : na;
+        for (int i = 0; i < nc; ++i)
+            for (int j = 0; j < ne; ++j) {
+                const Toward w = toward(edges[j], edges[(j + 1) % ne], corners[i]);
+                if (w.d < best) best = w.d, corner = corners[i], n = w.n, of_a = pass == 0;
+            }
+    }
+    // Overlapping or touching within rounding: the loop's rules decide.
+    if (!(best > noise) || !std::isfinite(best)) return false;
+    if (!(2 * bound <= noise || 2 * bound <= tolerance * best)) return false;
+    if (!of_a) n = {-n.x, -n.z};
+    const Vec3 unit = n.x * e + Vec3{0, 0, n.z};
+    const Vec3 at = corner.x * e + Vec3{0, 0, corner.z};
+    const Vec3 pa = of_a ? at : at - best * unit, pb = of_a ? at + best * unit : at;
+    const double core = best;
+    // The separation along the axis, from the shapes' supports: a lower bound of the distance,
+    // which must confirm the sections' answer.
+    const double sep = kernels::with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+        Vec3 sa, sb;
+        return -dot(unit, pair(unit, sa, sb));
+    });
+    if (!(sep >= core - (tolerance * core + noise))) return false;
+    center_offset = f.t;
+    out = LocalDistance{};
+    out.core = core;
+    out.v = -best * unit;
+    out.point_a = pa;
+    out.point_b = pb;
+    out.unit = unit;
+    out.intersecting = false;
+    out.bounded = sep > 0;
+    out.iterations = 1;
+    out.termination = Termination::RelativeError;
+    return true;
+}
+
+}  // namespace kairos::gjk_detail

@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// Cores among cylinders, cones and segments (capsules') whose axes are parallel: A - B is then a
+// body of revolution about the axis through the offset between theirs, and its section through
+// that axis is the sum of theirs (a body of revolution's section through its axis is also its
+// projection on that plane, and projections add). The nearest point of such a body to a point lies
+// in the axial half-plane through that point, so the cores' distance and depth are those of two
+// polygons in the plane through both axes. Internal to gjk.cpp and penetration.cpp.
+#pragma once
+
+#include "gjk/closed_form_distance.hpp"
+#include "gjk/support_kernels.hpp"
+#include "math/transform.hpp"
+
+namespace kairos::gjk_detail {
+
+// A cylinder, cone or segment core, with at least one of the two a cylinder or a cone (two
+// segments have a closed form of their own).
+bool axial_pair(const kernels::CoreOf& ca, const kernels::CoreOf& cb);
+
+// A core's axial section's corners in order around it (x across the axis, z along it; symmetric in
+// x): a cylinder's rectangle, a cone's triangle (apex at +h), a segment's ends. Returns the count.
+int axial_section(const kernels::CoreOf& c, double (&x)[4], double (&z)[4]);
+
+// The cores' distance when their axes are parallel within rounding or within the tolerance of the
+// distance (relative, as GJK's stop), from the closest points of their sections in the plane through
+// both axes: exact, one support call (the separation along the axis, which must confirm it to the
+// tolerance: a lower bound from the shapes' own supports). In A's frame, as the GJK loop's answer;
+// center_offset receives B's origin in A's frame. False (and the loop decides) when the pair is not
+// axial_pair, the axes are not parallel enough, the cores overlap or touch within rounding, or the
+// separation does not confirm the distance.
+bool parallel_axes_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
+                            const Transform& pose_b, double tolerance, LocalDistance& out, Vec3& center_offset);
+
+}  // namespace kairos::gjk_detail
