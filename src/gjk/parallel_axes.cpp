@@ -36,6 +36,13 @@ int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
 
 namespace {
 
+// A core's reach from its origin: the farthest corner of its section.
+double reach(const CoreOf& c) {
+    if (c.core == Core::Segment) return kernels::segment_half_length(*c.shape);
+    const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
+    return std::sqrt(v.radius * v.radius + v.half_height * v.half_height);
+}
+
 struct P2 {
     double x, z;
 };
@@ -67,27 +74,26 @@ Toward toward(P2 a, P2 b, P2 p) {
 bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
                             double tolerance, LocalDistance& out, Vec3& center_offset) {
     if (!axial_pair(ca, cb)) return false;
-    const kernels::RelativeFrame f = kernels::relative_frame(pose_a, pose_b);
-    const Vec3 axis_b = f.r.col(2);
-    double xa[4], za[4], xb[4], zb[4];
-    const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
-    double reach_a = 0, reach_b = 0;
-    for (int k = 0; k < na; ++k) reach_a = std::fmax(reach_a, std::hypot(xa[k], za[k]));
-    for (int k = 0; k < nb; ++k) reach_b = std::fmax(reach_b, std::hypot(xb[k], zb[k]));
+    // B's axis in A's frame first: most pairs are not parallel, and leave here.
+    const Vec3 axis_b = pose_a.to_local_direction(pose_b.rotation.col(2));
+    const double reach_a = reach(ca), reach_b = reach(cb);
     // Turning B about its centre by the angle between the axes (at most pi/2 times the sine, the
     // axis's part across A's; or the one and the other reversed) moves its support values by at
     // most that times its reach, and the distance with them.
-    const double bound = 1.5708 * std::hypot(axis_b.x, axis_b.y) * reach_b;
+    const double bound = 1.5708 * std::sqrt(axis_b.x * axis_b.x + axis_b.y * axis_b.y) * reach_b;
     const double noise = 64 * std::numeric_limits<double>::epsilon() *
                          (reach_a + reach_b + max_abs(pose_a.translation) + max_abs(pose_b.translation));
     if (!(2 * bound <= noise || 2 * bound <= tolerance * (reach_a + reach_b))) return false;
+    const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    double xa[4], za[4], xb[4], zb[4];
+    const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
     // The plane through both axes: x toward B's axis, from A's; any through A's when they coincide.
-    const double off = std::hypot(f.t.x, f.t.y);
-    const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
+    const double off = std::hypot(t.x, t.y);
+    const Vec3 e = off > 0 ? Vec3{t.x / off, t.y / off, 0} : Vec3{1, 0, 0};
     const double flip = axis_b.z < 0 ? -1.0 : 1.0;
     P2 a[4], b[4];
     for (int k = 0; k < na; ++k) a[k] = {xa[k], za[k]};
-    for (int k = 0; k < nb; ++k) b[k] = {xb[k] + off, flip * zb[k] + f.t.z};
+    for (int k = 0; k < nb; ++k) b[k] = {xb[k] + off, flip * zb[k] + t.z};
     // The sections' closest points: between two convex polygons apart, a corner of one and the
     // nearest point of an edge of the other. n: from A's section toward B's.
     double best = INFINITY;
@@ -118,7 +124,7 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
         return -dot(unit, pair(unit, sa, sb));
     });
     if (!(sep >= core - (tolerance * core + noise))) return false;
-    center_offset = f.t;
+    center_offset = t;
     out = LocalDistance{};
     out.core = core;
     out.v = -best * unit;
