@@ -130,6 +130,29 @@ struct Query {
     double truth = NAN;  // distance scenarios: the true distance (true_distance)
 };
 
+// Cylinders with parallel axes: A at random, B's axis across A's by up to rho_max of the radii's
+// sum and along it by up to dz_max of the half heights' sum, turned about its axis.
+void place_parallel(std::mt19937_64& rng, Spec& a, Spec& b, double rho_max, double dz_max) {
+    std::uniform_real_distribution<double> u(0, 1);
+    const double rho = rho_max * (a.a + b.a) * u(rng), phi = 2 * M_PI * u(rng);
+    const double dz = dz_max * (a.b + b.b) * (2 * u(rng) - 1), turn = 2 * M_PI * u(rng);
+    const Quat qa = gjk_test::random_quat(rng);
+    a.pose = make_transform(0.2 * gjk_test::random_unit(rng), qa);
+    b.pose =
+        make_transform(a.pose.apply({rho * std::cos(phi), rho * std::sin(phi), dz}), qa * axis_angle({0, 0, 1}, turn));
+}
+
+// Cylinders with parallel axes: A - B is the cylinder of radius ra + rb and half height ha + hb
+// about B's offset, so their gap (> 0 apart) or depth (< 0) is that of the origin from it, in long
+// double.
+long double parallel_cylinders_gap(const Spec& a, const Spec& b) {
+    const Vec3 t = a.pose.to_local_direction(b.pose.translation - a.pose.translation);
+    const long double radial = std::hypot((long double)t.x, (long double)t.y) - ((long double)a.a + b.a);
+    const long double axial = std::fabs((long double)t.z) - ((long double)a.b + b.b);
+    if (radial <= 0 && axial <= 0) return std::max(radial, axial);
+    return std::hypot(std::max(radial, 0.0L), std::max(axial, 0.0L));
+}
+
 // The true distance of a separated pair: the long double polytope oracle for boxes and hulls; for
 // curved pairs Kairos at tolerance 1e-14, taken only when the test-side supports
 // (gjk_peer_shapes.hpp, independent of src/) certify it: the gap between the two shapes along
@@ -150,7 +173,7 @@ double true_distance(const Query& x) {
 }
 
 std::vector<Query>& queries(Scenario sc) {
-    static std::vector<Query> all[5];
+    static std::vector<Query> all[6];
     std::vector<Query>& q = all[sc];
     if (!q.empty()) return q;
     std::mt19937_64 rng(1234 + sc);
@@ -165,8 +188,10 @@ std::vector<Query>& queries(Scenario sc) {
                 x.a = hull32(rng), x.b = hull32(rng);
                 break;
             case CylinderCone:
-            case ParallelCylinders:  // a signed distance scenario only (overlapping()), never asked for here
                 x.a = peer::random_spec(rng, Kind::Cylinder), x.b = peer::random_spec(rng, Kind::Cone);
+                break;
+            case ParallelCylinders:
+                x.a = peer::random_spec(rng, Kind::Cylinder), x.b = peer::random_spec(rng, Kind::Cylinder);
                 break;
             case SphereCapsule:
                 x.a = peer::random_spec(rng, Kind::Sphere), x.b = peer::random_spec(rng, Kind::Capsule);
@@ -175,7 +200,10 @@ std::vector<Query>& queries(Scenario sc) {
         // Distance scenarios hold separated pairs only (penetration is another query: Bullet would
         // run EPA on overlapping pairs and FCL returns early); box/box keeps both for intersection.
         for (;;) {
-            peer::place_pair(rng, x.a, x.b);
+            if (sc == ParallelCylinders)
+                place_parallel(rng, x.a, x.b, 1.6, 1.3);
+            else
+                peer::place_pair(rng, x.a, x.b);
             x.ka = peer::make_kairos(x.a), x.kb = peer::make_kairos(x.b);
             if (sc == BoxBoxMixed || !gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256).intersecting)
                 break;
@@ -187,7 +215,11 @@ std::vector<Query>& queries(Scenario sc) {
         x.axis_cache = {};
         x.ca = c_shape(x.a), x.cb = c_shape(x.b);
         x.pa = c_pose(x.a.pose), x.pb = c_pose(x.b.pose);
-        if (sc != BoxBoxMixed) x.truth = true_distance(x);
+        if (sc == ParallelCylinders) {
+            x.truth = double(parallel_cylinders_gap(x.a, x.b));
+        } else if (sc != BoxBoxMixed) {
+            x.truth = true_distance(x);
+        }
         // The C API must answer the core's query: same shapes, same poses up to rounding.
         kairos_distance_result r;
         const DistanceResult core = gjk_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, kTolerance, 256);
@@ -398,14 +430,8 @@ Overlap& overlapping(Scenario sc) {
             if (sc == Hull32) {
                 x.a = hull32(rng), x.b = hull32(rng);
             } else if (sc == ParallelCylinders) {
-                std::uniform_real_distribution<double> u(0, 1);
                 x.a = peer::random_spec(rng, Kind::Cylinder), x.b = peer::random_spec(rng, Kind::Cylinder);
-                const double rho = 0.9 * (x.a.a + x.b.a) * u(rng), phi = 2 * M_PI * u(rng);
-                const double dz = 0.6 * (x.a.b + x.b.b) * (2 * u(rng) - 1), turn = 2 * M_PI * u(rng);
-                const Quat qa = gjk_test::random_quat(rng);
-                x.a.pose = make_transform(0.2 * gjk_test::random_unit(rng), qa);
-                x.b.pose = make_transform(x.a.pose.apply({rho * std::cos(phi), rho * std::sin(phi), dz}),
-                                          qa * axis_angle({0, 0, 1}, turn));
+                place_parallel(rng, x.a, x.b, 0.9, 0.6);
             } else {
                 x.a = peer::random_spec(rng, sc == CylinderCone ? Kind::Cylinder : Kind::Box);
                 x.b = peer::random_spec(rng, sc == CylinderCone ? Kind::Cone : Kind::Box);
@@ -421,8 +447,7 @@ Overlap& overlapping(Scenario sc) {
         x.ca = c_shape(x.a), x.cb = c_shape(x.b);
         x.pa = c_pose(x.a.pose), x.pb = c_pose(x.b.pose);
         if (sc == ParallelCylinders) {
-            const Vec3 t = x.a.pose.to_local_direction(x.b.pose.translation - x.a.pose.translation);
-            o.depth.push_back(std::min(x.a.a + x.b.a - std::hypot(t.x, t.y), x.a.b + x.b.b - std::fabs(t.z)));
+            o.depth.push_back(-double(parallel_cylinders_gap(x.a, x.b)));
         } else if (sc == CylinderCone) {
             o.depth.push_back(-signed_distance(*x.ka, x.a.pose, *x.kb, x.b.pose, 1e-13, 100000).distance);
         } else {
@@ -553,16 +578,17 @@ void overlap_scenarios(benchmark::internal::Benchmark* b) {
 
 void scenarios(benchmark::internal::Benchmark* b) {
     b->ArgName("scenario");
-    for (int s : {BoxBox, Hull32, CylinderCone, SphereCapsule}) b->Arg(s);
+    for (int s : {BoxBox, Hull32, CylinderCone, SphereCapsule, ParallelCylinders}) b->Arg(s);
 }
 
 }  // namespace
 
-// scenario: 0 box/box, 1 hull32/hull32, 2 cylinder/cone, 3 sphere/capsule.
+// scenario: 0 box/box, 1 hull32/hull32, 2 cylinder/cone, 3 sphere/capsule, 5 parallel cylinders.
 // tol_exp: the tolerance 10^-tol_exp (10 is the public default).
 BENCHMARK(BM_KairosDistance)
     ->ArgNames({"scenario", "tol_exp"})
     ->ArgsProduct({{BoxBox, Hull32, CylinderCone, SphereCapsule}, {10, 8, 6}});
+BENCHMARK(BM_KairosDistance)->ArgNames({"scenario", "tol_exp"})->Args({ParallelCylinders, 10});
 BENCHMARK(BM_KairosCapiDistance)->Apply(scenarios);
 BENCHMARK(BM_FclDistanceGstIndep)->Apply(scenarios);
 BENCHMARK(BM_BulletF64Distance)->Apply(scenarios);

@@ -47,26 +47,28 @@ struct P2 {
     double x, z;
 };
 
-// From the point p to the segment [a, b]: the distance, and the unit direction toward the
-// segment's nearest point. Within the segment, its line's normal and p's offset from the line
-// (the difference of p and its foot would tilt by rounding over a gap 1e-12 of the size: 1e-4 rad).
-struct Toward {
-    double d;
-    P2 n;
+// A polygon's edge from a to a + e, with |e|^2 and its reciprocal (0 for a point).
+struct Edge {
+    P2 a, e;
+    double ee, inv;
 };
-Toward toward(P2 a, P2 b, P2 p) {
-    const double ex = b.x - a.x, ez = b.z - a.z, ee = ex * ex + ez * ez;
-    const double s = ee > 0 ? ((p.x - a.x) * ex + (p.z - a.z) * ez) / ee : 0;
-    if (s > 0 && s < 1) {
-        const double len = std::sqrt(ee);
-        P2 n{ez / len, -ex / len};
-        double d = n.x * (a.x - p.x) + n.z * (a.z - p.z);
-        if (d < 0) d = -d, n = {-n.x, -n.z};
-        return {d, n};
+
+// The squared distance from p to an edge (from p's offset across the edge's line within it).
+double distance_sq(const Edge& g, P2 p) {
+    const double dx = p.x - g.a.x, dz = p.z - g.a.z, along = dx * g.e.x + dz * g.e.z;
+    if (!(along > 0)) return dx * dx + dz * dz;
+    if (!(along < g.ee)) {
+        const double fx = dx - g.e.x, fz = dz - g.e.z;
+        return fx * fx + fz * fz;
     }
-    const P2 q = s <= 0 ? a : b;
-    const double d = std::hypot(q.x - p.x, q.z - p.z);
-    return {d, d > 0 ? P2{(q.x - p.x) / d, (q.z - p.z) / d} : P2{0, 0}};
+    const double c = g.e.x * dz - g.e.z * dx;
+    return c * c * g.inv;
+}
+
+// Where the nearest point of an edge to p lies: 0 at the start, 1 within, 2 at the end.
+int nearest_part(const Edge& g, P2 p) {
+    const double along = (p.x - g.a.x) * g.e.x + (p.z - g.a.z) * g.e.z;
+    return !(along > 0) ? 0 : (!(along < g.ee) ? 2 : 1);
 }
 
 }  // namespace
@@ -85,29 +87,64 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
                          (reach_a + reach_b + max_abs(pose_a.translation) + max_abs(pose_b.translation));
     if (!(2 * bound <= noise || 2 * bound <= tolerance * (reach_a + reach_b))) return false;
     const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
+    // Squares of the sections' coordinates must neither overflow nor underflow; beyond 2^+-100 the
+    // loop, which rescales, decides.
+    const double extent = reach_a + reach_b + max_abs(t);
+    if (!(extent >= 0x1p-100 && extent <= 0x1p100) || !(std::fmin(reach_a, reach_b) >= 0x1p-100 * extent)) return false;
     double xa[4], za[4], xb[4], zb[4];
     const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
     // The plane through both axes: x toward B's axis, from A's; any through A's when they coincide.
-    const double off = std::hypot(t.x, t.y);
+    const double off = std::sqrt(t.x * t.x + t.y * t.y);
     const Vec3 e = off > 0 ? Vec3{t.x / off, t.y / off, 0} : Vec3{1, 0, 0};
     const double flip = axis_b.z < 0 ? -1.0 : 1.0;
     P2 a[4], b[4];
     for (int k = 0; k < na; ++k) a[k] = {xa[k], za[k]};
     for (int k = 0; k < nb; ++k) b[k] = {xb[k] + off, flip * zb[k] + t.z};
     // The sections' closest points: between two convex polygons apart, a corner of one and the
-    // nearest point of an edge of the other. n: from A's section toward B's.
-    double best = INFINITY;
-    P2 corner{}, n{};
+    // nearest point of an edge of the other, compared by squares (the coordinates are within
+    // 2^+-100 of 1: checked above). n: from A's section toward B's.
+    Edge ea[4], eb[4];
+    for (int pass = 0; pass < 2; ++pass) {
+        const P2* p = pass == 0 ? a : b;
+        Edge* g = pass == 0 ? ea : eb;
+        const int count = pass == 0 ? na : nb;
+        for (int k = 0; k < count; ++k) {
+            const P2 q = p[(k + 1) % count];
+            g[k].a = p[k];
+            g[k].e = {q.x - p[k].x, q.z - p[k].z};
+            g[k].ee = g[k].e.x * g[k].e.x + g[k].e.z * g[k].e.z;
+            g[k].inv = g[k].ee > 0 ? 1 / g[k].ee : 0;
+        }
+    }
+    double best_sq = INFINITY;
+    P2 corner{};
+    const Edge* edge = nullptr;
     bool of_a = true;
     for (int pass = 0; pass < 2; ++pass) {
         const P2* corners = pass == 0 ? a : b;
-        const P2* edges = pass == 0 ? b : a;
+        const Edge* edges = pass == 0 ? eb : ea;
         const int nc = pass == 0 ? na : nb, ne = pass == 0 ? nb : na;
         for (int i = 0; i < nc; ++i)
             for (int j = 0; j < ne; ++j) {
-                const Toward w = toward(edges[j], edges[(j + 1) % ne], corners[i]);
-                if (w.d < best) best = w.d, corner = corners[i], n = w.n, of_a = pass == 0;
+                const double d = distance_sq(edges[j], corners[i]);
+                if (d < best_sq) best_sq = d, corner = corners[i], edge = &edges[j], of_a = pass == 0;
             }
+    }
+    if (edge == nullptr) return false;
+    // Within the edge: its line's normal and the corner's offset from the line (the difference of
+    // the corner and its foot would tilt by rounding over a gap 1e-12 of the size: 1e-4 rad).
+    double best;
+    P2 n;
+    const int at_edge = nearest_part(*edge, corner);
+    if (at_edge == 1) {
+        const double len = std::sqrt(edge->ee);
+        n = {edge->e.z / len, -edge->e.x / len};
+        best = n.x * (edge->a.x - corner.x) + n.z * (edge->a.z - corner.z);
+        if (best < 0) best = -best, n = {-n.x, -n.z};
+    } else {
+        const P2 q = at_edge == 0 ? edge->a : P2{edge->a.x + edge->e.x, edge->a.z + edge->e.z};
+        best = std::sqrt((q.x - corner.x) * (q.x - corner.x) + (q.z - corner.z) * (q.z - corner.z));
+        n = best > 0 ? P2{(q.x - corner.x) / best, (q.z - corner.z) / best} : P2{0, 0};
     }
     // Overlapping or touching within rounding: the loop's rules decide.
     if (!(best > noise) || !std::isfinite(best)) return false;
