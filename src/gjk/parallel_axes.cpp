@@ -87,19 +87,22 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
                          (reach_a + reach_b + max_abs(pose_a.translation) + max_abs(pose_b.translation));
     if (!(2 * bound <= noise || 2 * bound <= tolerance * (reach_a + reach_b))) return false;
     const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
-    // Squares of the sections' coordinates must neither overflow nor underflow; beyond 2^+-100 the
-    // loop, which rescales, decides.
+    // The plane is worked in at a power of two (exact) that brings the pair's extent to about 1,
+    // where squares neither overflow nor underflow; a core below 2^-100 of that (its squares
+    // would) is left to the loop.
     const double extent = reach_a + reach_b + max_abs(t);
-    if (!(extent >= 0x1p-100 && extent <= 0x1p100) || !(std::fmin(reach_a, reach_b) >= 0x1p-100 * extent)) return false;
+    if (!(extent > 0) || !std::isfinite(extent) || !(std::fmin(reach_a, reach_b) >= 0x1p-100 * extent)) return false;
+    const double sc = std::ldexp(1.0, -std::ilogb(extent));
     double xa[4], za[4], xb[4], zb[4];
     const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
     // The plane through both axes: x toward B's axis, from A's; any through A's when they coincide.
-    const double off = std::sqrt(t.x * t.x + t.y * t.y);
-    const Vec3 e = off > 0 ? Vec3{t.x / off, t.y / off, 0} : Vec3{1, 0, 0};
+    const Vec3 ts = sc * t;
+    const double off = std::sqrt(ts.x * ts.x + ts.y * ts.y);
+    const Vec3 e = off > 0 ? Vec3{ts.x / off, ts.y / off, 0} : Vec3{1, 0, 0};
     const double flip = axis_b.z < 0 ? -1.0 : 1.0;
     P2 a[4], b[4];
-    for (int k = 0; k < na; ++k) a[k] = {xa[k], za[k]};
-    for (int k = 0; k < nb; ++k) b[k] = {xb[k] + off, flip * zb[k] + t.z};
+    for (int k = 0; k < na; ++k) a[k] = {sc * xa[k], sc * za[k]};
+    for (int k = 0; k < nb; ++k) b[k] = {sc * xb[k] + off, sc * flip * zb[k] + ts.z};
     // The sections' closest points: between two convex polygons apart, a corner of one and the
     // nearest point of an edge of the other, compared by squares (the coordinates are within
     // 2^+-100 of 1: checked above). n: from A's section toward B's.
@@ -146,6 +149,8 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
         best = std::sqrt((q.x - corner.x) * (q.x - corner.x) + (q.z - corner.z) * (q.z - corner.z));
         n = best > 0 ? P2{(q.x - corner.x) / best, (q.z - corner.z) / best} : P2{0, 0};
     }
+    best /= sc;
+    corner = {corner.x / sc, corner.z / sc};
     // Overlapping or touching within rounding: the loop's rules decide.
     if (!(best > noise) || !std::isfinite(best)) return false;
     if (!(2 * bound <= noise || 2 * bound <= tolerance * best)) return false;

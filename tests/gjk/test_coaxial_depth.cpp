@@ -263,10 +263,11 @@ Real polygon_distance(const std::vector<P2>& a, const std::vector<P2>& b) {
 // a body of revolution whose nearest point to the origin lies there), in long double. The pairs
 // take the closed form (gjk/parallel_axes.hpp) unless the axes are turned by more than the
 // tolerance of the distance allows: here by 1e-13 rad in a third of the cases, which the closed
-// form must decline on small gaps and may take on large ones (within 2e-13 of the size of the
-// parallel pair's distance). Checked: the distance, its points on the surfaces and the distance
+// form must decline on small gaps and may take on large ones (within twice the angle times B's
+// reach of the parallel pair's distance). Checked: the distance, its points on the surfaces and the distance
 // apart along the axis, and the axis by the shapes' supports (written here, not the library's).
-// Sizes 1e-3 to 1e3, up to 1e4 sizes from the origin, both argument orders.
+// Sizes 1e-3 to 1e3, 1e-120 and 1e120 (the closed form works at a power of two that brings the
+// pair to about 1), up to 1e4 sizes from the origin, both argument orders.
 TEST(CoaxialDepth, ParallelAxesApartTakeTheSectionsDistance) {
     const uint64_t seed = 5101;
     std::mt19937_64 rng(seed);
@@ -274,9 +275,9 @@ TEST(CoaxialDepth, ParallelAxesApartTakeTheSectionsDistance) {
     const char* names[] = {"cylinder", "cone", "capsule"};
     int cases = 0, failures = 0, closed = 0, tilted_closed = 0, tilted = 0, clear = 0;
     double worst = 0;
-    for (const double size : {1e-3, 1.0, 1e3})
+    for (const double size : {1e-3, 1.0, 1e3, 1e-120, 1e120})
         for (const double far : {0.0, 1e4})
-            for (int i = 0; i < 400; ++i) {
+            for (int i = 0; i < (size < 1e-100 || size > 1e100 ? 100 : 400); ++i) {
                 int ka = static_cast<int>(3 * u(rng)), kb = static_cast<int>(3 * u(rng));
                 if (ka == 2 && kb == 2) kb = i % 2;
                 const double ra = size * (0.2 + u(rng)), ha = size * (0.2 + u(rng));
@@ -330,7 +331,8 @@ TEST(CoaxialDepth, ParallelAxesApartTakeTheSectionsDistance) {
                                 axis_angle({0, 0, 1}, 6.283185307179586 * u(rng));
                 const Transform pb = make_transform(pa.apply({off * std::cos(phi), off * std::sin(phi), dz}), qb);
                 const double coords = max_abs(pa.translation) + max_abs(pb.translation);
-                const double tol = 1e-10 * truth + 2e-13 * size * (tilt > 0) + 1e-14 * size + 1e-15 * coords;
+                // A turn moves B's support values by at most the angle times its reach: twice that.
+                const double tol = 1e-10 * truth + 2 * tilt * std::hypot(rb, hb) + 1e-14 * size + 1e-15 * coords;
                 ++cases;
                 tilted += tilt > 0;
                 // Untilted cores clear of their poses' rounding: the closed form's (at most 64 ulps
