@@ -21,13 +21,13 @@ bool axial_pair(const kernels::CoreOf& ca, const kernels::CoreOf& cb);
 // x): a cylinder's rectangle, a cone's triangle (apex at +h), a segment's ends. Returns the count.
 int axial_section(const kernels::CoreOf& c, double (&x)[4], double (&z)[4]);
 
-// The cores' distance when their axes are parallel within rounding or within the tolerance of the
-// distance (relative, as GJK's stop), from the closest points of their sections in the plane through
-// both axes: exact, one support call (the separation along the axis, which must confirm it to the
-// tolerance: a lower bound from the shapes' own supports). In A's frame, as the GJK loop's answer;
-// center_offset receives B's origin in A's frame. False (and the loop decides) when the pair is not
-// axial_pair, the axes are not parallel enough, the cores overlap or touch within rounding, or the
-// separation does not confirm the distance.
+// The cores' distance when their axes are parallel within the poses' rounding (64 ulps of their
+// coordinates and reaches), from the closest points of their sections in the plane through both
+// axes: exact, one support call (the separation along the axis, a lower bound from the shapes' own
+// supports, which must confirm it to the tolerance, relative as GJK's stop). In A's frame, as the
+// GJK loop's answer; center_offset receives B's origin in A's frame. False (and the loop decides)
+// when the pair is not axial_pair, the axes are not parallel, the cores overlap or touch within
+// rounding, or the separation does not confirm the distance.
 bool parallel_axes_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
                             const Transform& pose_b, double tolerance, LocalDistance& out, Vec3& center_offset);
 
