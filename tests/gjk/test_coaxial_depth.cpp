@@ -72,6 +72,21 @@ struct Hull2 {
     }
 };
 
+// A core (kind 0 cylinder, 1 cone, 2 segment: a capsule's core) of radius r and half height h,
+// rounded by a ball of radius pad when pad > 0.
+struct Axial {
+    Axial(int kind, double r, double h, double pad)
+        : core(kind == 0   ? gjk_test::ShapePtr(new CylinderShape(r, h))
+               : kind == 1 ? gjk_test::ShapePtr(new ConeShape(r, h))
+                           : gjk_test::ShapePtr(new SegmentShape(h))),
+          ball(pad),
+          rounded(*core, ball) {}
+    const Shape& shape() const { return ball.radius > 0 ? static_cast<const Shape&>(rounded) : *core; }
+    gjk_test::ShapePtr core;
+    SphereShape ball;
+    MinkowskiSumShape rounded;
+};
+
 // How far a world point lies from the surface of a core (kind, r, h) at `pose` grown by `pad`:
 // its distance, in the axial half-plane through it, to the section's boundary, less pad.
 double off_surface(Vec3 world, const Transform& pose, int kind, double r, double h, double pad) {
@@ -124,17 +139,8 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                 const Vec3 across{off * std::cos(phi), off * std::sin(phi), 0};
                 if (same && ka == kb && dz == 0 && !flip && off == 0) ++coincident;
 
-                // The shapes: cores (a capsule's core is its segment) and their rounded forms.
-                const auto core = [](int kind, double r, double h) -> gjk_test::ShapePtr {
-                    if (kind == 0) return gjk_test::ShapePtr(new CylinderShape(r, h));
-                    if (kind == 1) return gjk_test::ShapePtr(new ConeShape(r, h));
-                    return gjk_test::ShapePtr(new SegmentShape(h));
-                };
-                const gjk_test::ShapePtr core_a = core(ka, ra, ha), core_b = core(kb, rb, hb);
-                SphereShape ball_a(pad_a), ball_b(pad_b);
-                MinkowskiSumShape round_a(*core_a, ball_a), round_b(*core_b, ball_b);
-                const Shape& a = pad_a > 0 ? static_cast<const Shape&>(round_a) : *core_a;
-                const Shape& b = pad_b > 0 ? static_cast<const Shape&>(round_b) : *core_b;
+                const Axial shape_a(ka, ra, ha, pad_a), shape_b(kb, rb, hb, pad_b);
+                const Shape &a = shape_a.shape(), &b = shape_b.shape();
 
                 // A's frame at random; B's: A's, reversed or not, turned about the axis, dz along it.
                 const Quat qa = random_quat(rng);
@@ -314,16 +320,8 @@ TEST(CoaxialDepth, ParallelAxesApartTakeTheSectionsDistance) {
                 if (!(core_gap > Real(pad_a + pad_b))) continue;  // rounded to touching
                 const double truth = double(core_gap - pad_a - pad_b);
 
-                const auto core = [](int kind, double r, double h) -> gjk_test::ShapePtr {
-                    if (kind == 0) return gjk_test::ShapePtr(new CylinderShape(r, h));
-                    if (kind == 1) return gjk_test::ShapePtr(new ConeShape(r, h));
-                    return gjk_test::ShapePtr(new SegmentShape(h));
-                };
-                const gjk_test::ShapePtr core_a = core(ka, ra, ha), core_b = core(kb, rb, hb);
-                SphereShape ball_a(pad_a), ball_b(pad_b);
-                MinkowskiSumShape round_a(*core_a, ball_a), round_b(*core_b, ball_b);
-                const Shape& a = pad_a > 0 ? static_cast<const Shape&>(round_a) : *core_a;
-                const Shape& b = pad_b > 0 ? static_cast<const Shape&>(round_b) : *core_b;
+                const Axial shape_a(ka, ra, ha, pad_a), shape_b(kb, rb, hb, pad_b);
+                const Shape &a = shape_a.shape(), &b = shape_b.shape();
                 const Quat qa = random_quat(rng);
                 const Transform pa = make_transform(far * size * random_unit(rng), qa);
                 const Quat qb = qa * axis_angle({std::cos(phi + 1), std::sin(phi + 1), 0}, tilt) *
