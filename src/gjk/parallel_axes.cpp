@@ -36,11 +36,38 @@ int axial_section(const CoreOf& c, double (&x)[4], double (&z)[4]) {
 
 namespace {
 
-// A core's reach from its origin: the farthest corner of its section.
+// A core's reach from its origin: the farthest corner of its section (squares where they neither
+// overflow nor underflow, hypot's slower care outside).
 double reach(const CoreOf& c) {
     if (c.core == Core::Segment) return kernels::segment_half_length(*c.shape);
     const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
-    return std::sqrt(v.radius * v.radius + v.half_height * v.half_height);
+    const double m = std::fmax(v.radius, v.half_height);
+    if (m > 0x1p-500 && m < 0x1p500) return std::sqrt(v.radius * v.radius + v.half_height * v.half_height);
+    return std::hypot(v.radius, v.half_height);
+}
+
+// How far from parallel two axial cores' axes are, against the poses' rounding.
+struct AxesTurn {
+    double reach_a, reach_b;
+    Vec3 axis_b;  // B's axis in A's frame
+    // Turning B about its centre by the angle between the axes (at most pi/2 times the sine, the
+    // axis's part across A's; or the one and the other reversed) moves its support values by at
+    // most this.
+    double bound;
+    // The rounding the poses carry: 64 ulps of their coordinates and of the reaches (no method's
+    // answer is nearer). Infinite (an overflowed reach or pose) is never within it.
+    double noise;
+    bool within_rounding() const { return 2 * bound <= noise && noise < INFINITY; }
+};
+
+AxesTurn axes_turn(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b) {
+    AxesTurn w;
+    w.reach_a = reach(ca), w.reach_b = reach(cb);
+    w.axis_b = pose_a.to_local_direction(pose_b.rotation.col(2));
+    w.bound = 1.5708 * std::sqrt(w.axis_b.x * w.axis_b.x + w.axis_b.y * w.axis_b.y) * w.reach_b;
+    w.noise = 64 * std::numeric_limits<double>::epsilon() *
+              (w.reach_a + w.reach_b + max_abs(pose_a.translation) + max_abs(pose_b.translation));
+    return w;
 }
 
 struct P2 {
@@ -76,20 +103,15 @@ int nearest_part(const Edge& g, P2 p) {
 bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
                             double tolerance, LocalDistance& out, Vec3& center_offset) {
     if (!axial_pair(ca, cb)) return false;
-    // B's axis in A's frame first: most pairs are not parallel, and leave here.
-    const Vec3 axis_b = pose_a.to_local_direction(pose_b.rotation.col(2));
-    const double reach_a = reach(ca), reach_b = reach(cb);
-    // Turning B about its centre by the angle between the axes (at most pi/2 times the sine, the
-    // axis's part across A's; or the one and the other reversed) moves its support values by at
-    // most that times its reach. Parallel means within the poses' rounding: B's point is then on B
-    // to rounding and the distance an upper bound, as the loop's. (Within the tolerance of the
-    // distance, as the depth's closed form takes it, B's point could lie off a turned B: a needle
-    // beside a cone 4141 wide at tolerance 0.25 was reported 3 % below a gap its own supports
-    // proved; fuzz_queries.)
-    const double bound = 1.5708 * std::sqrt(axis_b.x * axis_b.x + axis_b.y * axis_b.y) * reach_b;
-    const double noise = 64 * std::numeric_limits<double>::epsilon() *
-                         (reach_a + reach_b + max_abs(pose_a.translation) + max_abs(pose_b.translation));
-    if (!(2 * bound <= noise)) return false;
+    // Most pairs are not parallel, and leave here. Parallel means within the poses' rounding: B's
+    // point is then on B to rounding and the distance an upper bound, as the loop's. (Within the
+    // tolerance of the distance, as the depth's closed form takes it, B's point could lie off a
+    // turned B: a needle beside a cone 4141 wide at tolerance 0.25 was reported 3 % below a gap its
+    // own supports proved; fuzz_queries.)
+    const AxesTurn w = axes_turn(ca, pose_a, cb, pose_b);
+    if (!w.within_rounding()) return false;
+    const double reach_a = w.reach_a, reach_b = w.reach_b, noise = w.noise;
+    const Vec3 axis_b = w.axis_b;
     const Vec3 t = pose_a.to_local_direction(pose_b.translation - pose_a.translation);
     // The plane is worked in at a power of two (exact) that brings the pair's extent to about 1,
     // where squares neither overflow nor underflow; a core below 2^-100 of that (its squares
@@ -180,6 +202,97 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
     out.bounded = sep > 0;
     out.iterations = 1;
     out.termination = Termination::RelativeError;
+    return true;
+}
+
+// The origin's nearest boundary point of A - B lies in the axial half-plane through the origin,
+// where A - B is a polygon: the least translation is along a normal of one of its edges, which are
+// the edges of A's section and of B's (both signs of each are tried). Each candidate's translation is
+// measured with the shapes' own supports, so it separates them whatever their placement: never
+// below the depth. A turn of B by the axes' angle moves each by at most the turn's bound, which puts
+// the answer within twice that of the depth.
+bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                   double tolerance, epa_detail::CoreDepth& out) {
+    if (!axial_pair(ca, cb)) return false;
+    // Within the poses' rounding, or within the tolerance of the depth (checked once it is known;
+    // the depth is at most twice the reaches).
+    const AxesTurn w = axes_turn(ca, pose_a, cb, pose_b);
+    const double bound = w.bound;
+    if (!(w.noise < INFINITY) || !(w.within_rounding() || 2 * bound <= 2 * tolerance * (w.reach_a + w.reach_b)))
+        return false;
+    // The cones' slant normals' components (zero: no cone).
+    struct Slant {
+        double across = 0, up = 0;
+    };
+    const auto slant = [](const CoreOf& c) {
+        if (c.core == Core::Segment) return Slant{};
+        const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
+        if (!v.cone) return Slant{};
+        const closed_form::Slant s = closed_form::slant_of(v.radius, v.half_height);
+        return Slant{s.across, s.up};
+    };
+    const Slant sa = slant(ca), sb = slant(cb);
+    const kernels::RelativeFrame f = kernels::relative_frame(pose_a, pose_b);
+    const Vec3 axis_b = w.axis_b;
+    const double off = std::hypot(f.t.x, f.t.y);
+    // The plane through both axes (x toward B's, from A's), any through A's when they coincide.
+    const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
+    double candidates[12][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    int n = 4;
+    for (const Slant* c : {&sa, &sb})
+        if (c->across > 0)
+            for (const double x : {c->across, -c->across})
+                for (const double z : {c->up, -c->up}) candidates[n][0] = x, candidates[n][1] = z, ++n;
+    double best = INFINITY;
+    int chosen = 0;
+    kernels::with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
+        for (int i = 0; i < n; ++i) {
+            const Vec3 u = candidates[i][0] * e + Vec3{0, 0, candidates[i][1]};
+            Vec3 pa, pb;
+            const double d = dot(u, pair(u, pa, pb));  // the translation of B along u that separates
+            if (d < best) best = d, chosen = i;
+        }
+    });
+    if (!(best > 0) || !std::isfinite(best)) return false;
+    if (!(w.within_rounding() || 2 * bound * (1 + tolerance) <= tolerance * best)) return false;
+    // The deepest points: B moved by the depth along u touches A where A's section's feature
+    // along u (a vertex or an edge) meets B's along -u; across u, the middle of where they
+    // overlap. point_a is that contact, point_b it less the depth along u (the supports' own
+    // points lie anywhere on those features, and would not differ by the depth along u).
+    const double ux = candidates[chosen][0], uz = candidates[chosen][1];
+    double a_along = -INFINITY, a_lo = INFINITY, a_hi = -INFINITY, b_along = INFINITY, b_lo = INFINITY,
+           b_hi = -INFINITY;
+    const double flip = axis_b.z < 0 ? -1.0 : 1.0;
+    const double level = 64 * std::numeric_limits<double>::epsilon() * (w.reach_a + w.reach_b + max_abs(f.t));
+    for (int pass = 0; pass < 2; ++pass)
+        for (const bool of_a : {true, false}) {
+            double x[4], z[4];
+            const int count = axial_section(of_a ? ca : cb, x, z);
+            for (int k = 0; k < count; ++k) {
+                const double xk = of_a ? x[k] : x[k] + off,
+                             zk = of_a ? z[k] : flip * z[k] + f.t.z;  // B's, in A's frame
+                const double along = ux * xk + uz * zk, across = -uz * xk + ux * zk;
+                if (pass == 0) {
+                    if (of_a)
+                        a_along = std::fmax(a_along, along);
+                    else
+                        b_along = std::fmin(b_along, along);
+                } else if (of_a ? along >= a_along - level : along <= b_along + level) {
+                    double& lo = of_a ? a_lo : b_lo;
+                    double& hi = of_a ? a_hi : b_hi;
+                    lo = std::fmin(lo, across), hi = std::fmax(hi, across);
+                }
+            }
+        }
+    const double mid = 0.5 * (std::fmax(a_lo, b_lo) + std::fmin(a_hi, b_hi));
+    const double px = ux * a_along - uz * mid, pz = uz * a_along + ux * mid;
+    out.n = ux * e + Vec3{0, 0, uz};
+    out.point_a = px * e + Vec3{0, 0, pz};
+    out.point_b = out.point_a - best * out.n;
+    out.depth = best;
+    out.iterations = 1;
+    out.termination = Termination::RelativeError;
+    out.flat = false;
     return true;
 }
 

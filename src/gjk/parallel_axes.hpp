@@ -5,9 +5,12 @@
 // projection on that plane, and projections add). The nearest point of such a body to a point lies
 // in the axial half-plane through that point, so the cores' distance and depth are those of two
 // polygons in the plane through both axes. Internal to gjk.cpp and penetration.cpp.
+// Both closed forms take a pair only when its axes are parallel within the poses' rounding, or
+// (the depth) when turning B by their angle moves a support value by less than the tolerance allows.
 #pragma once
 
 #include "gjk/closed_form_distance.hpp"
+#include "gjk/polytope.hpp"
 #include "gjk/support_kernels.hpp"
 #include "math/transform.hpp"
 
@@ -30,5 +33,16 @@ int axial_section(const kernels::CoreOf& c, double (&x)[4], double (&z)[4]);
 // rounding, or the separation does not confirm the distance.
 bool parallel_axes_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
                             const Transform& pose_b, double tolerance, LocalDistance& out, Vec3& center_offset);
+
+// The depth of two overlapping such cores, exact: the least of the candidate translations along the
+// sections' edge normals, each measured with the shapes' own supports (so never below the depth).
+// In A's frame, as the expansion's answer. Taken when the axes are parallel within the poses'
+// rounding or within the tolerance of the depth (relative, as the expansion's stop): the answer is
+// then within twice the turn's bound of the depth, and B's deepest point (from the untilted
+// section) off B by at most that bound. The expansion can only approach the circle along which
+// coaxial sides meet (two coincident cylinders took its 254 support calls to come within 6e-4 of the
+// depth, in about 0.5 ms). False otherwise, or when the cores do not overlap.
+bool coaxial_depth(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
+                   const Transform& pose_b, double tolerance, epa_detail::CoreDepth& out);
 
 }  // namespace kairos::gjk_detail

@@ -96,111 +96,6 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
     return d;
 }
 
-// The depth of two overlapping cores among cylinders, cones and segments (capsules') with parallel
-// axes, at least one of them a cylinder or a cone, exact. Their Minkowski difference is then itself
-// a body of revolution, about the axis through the offset between theirs, whose axial section is
-// the sum of theirs (a revolution body's section through its axis is also its projection on that
-// plane). The origin's nearest boundary point lies in the axial half-plane through the origin
-// (turning a point about the axis into it brings it no nearer), where the body is a polygon: the
-// least translation is along a normal of one of its edges, which are the edges of A's section and of
-// B's, in the plane through both axes (both signs of each are tried). Each candidate's translation
-// is measured with the shapes' own supports, so it is a translation that separates them whatever
-// their placement: never below the depth. The expansion can only approach the circle along which
-// coaxial sides meet (two coincident cylinders took its 254 support calls to come within 6e-4 of
-// the depth, in about 0.5 ms), and approaches a parallel pair's rounded side slowly too. Taken when
-// the axes are parallel to within `bound` (the angle between them times B's reach: the most turning
-// B about its centre moves a support value), which puts the answer within twice that of the depth:
-// within rounding, or within the tolerance of the depth (relative, as the expansion's stop). False
-// otherwise, or when the cores do not overlap.
-bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
-                   double tolerance, CoreDepth& out) {
-    if (!gjk_detail::axial_pair(ca, cb)) return false;
-    // A core's reach from its origin, and its cone's slant normals' components (zero: no cone).
-    struct Section {
-        double reach, across = 0, up = 0;
-    };
-    const auto section = [](const CoreOf& c) {
-        if (c.core == Core::Segment) return Section{segment_half_length(*c.shape)};
-        const closed_form::Revolution v = closed_form::revolution_of(*c.shape);
-        const double reach = std::hypot(v.radius, v.half_height);
-        if (!v.cone) return Section{reach};
-        const closed_form::Slant slant = closed_form::slant_of(v.radius, v.half_height);
-        return Section{reach, slant.across, slant.up};
-    };
-    const Section sa = section(ca), sb = section(cb);
-    const RelativeFrame f = relative_frame(pose_a, pose_b);
-    const Vec3 axis_b = f.r.col(2);
-    const double off = std::hypot(f.t.x, f.t.y);
-    // The angle between the axes (or the one and the other reversed) is at most pi/2 times the
-    // sine, which is the axis's part across A's axis.
-    const double bound = 1.5708 * std::hypot(axis_b.x, axis_b.y) * sb.reach;
-    // Within the rounding the poses carry (a few ulps of their coordinates and of the reaches: no
-    // method's answer is nearer), or within the tolerance of the depth (checked once it is known;
-    // the depth is at most twice the reaches).
-    const double noise = 64 * std::numeric_limits<double>::epsilon() *
-                         (sa.reach + sb.reach + max_abs(pose_a.translation) + max_abs(pose_b.translation));
-    if (!(2 * bound <= noise || 2 * bound <= 2 * tolerance * (sa.reach + sb.reach))) return false;
-    // The plane through both axes (x toward B's, from A's), any through A's when they coincide.
-    const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
-    double candidates[12][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-    int n = 4;
-    for (const Section* c : {&sa, &sb})
-        if (c->across > 0)
-            for (const double x : {c->across, -c->across})
-                for (const double z : {c->up, -c->up}) candidates[n][0] = x, candidates[n][1] = z, ++n;
-    double best = INFINITY;
-    int chosen = 0;
-    with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
-        for (int i = 0; i < n; ++i) {
-            const Vec3 u = candidates[i][0] * e + Vec3{0, 0, candidates[i][1]};
-            Vec3 pa, pb;
-            const double d = dot(u, pair(u, pa, pb));  // the translation of B along u that separates
-            if (d < best) best = d, chosen = i;
-        }
-    });
-    if (!(best > 0) || !std::isfinite(best)) return false;
-    if (!(2 * bound <= noise || 2 * bound * (1 + tolerance) <= tolerance * best)) return false;
-    // The deepest points: B moved by the depth along u touches A where A's section's feature
-    // along u (a vertex or an edge) meets B's along -u; across u, the middle of where they
-    // overlap. point_a is that contact, point_b it less the depth along u (the supports' own
-    // points lie anywhere on those features, and would not differ by the depth along u).
-    const double ux = candidates[chosen][0], uz = candidates[chosen][1];
-    double a_along = -INFINITY, a_lo = INFINITY, a_hi = -INFINITY, b_along = INFINITY, b_lo = INFINITY,
-           b_hi = -INFINITY;
-    const double flip = axis_b.z < 0 ? -1.0 : 1.0;
-    const double level = 64 * std::numeric_limits<double>::epsilon() * (sa.reach + sb.reach + max_abs(f.t));
-    for (int pass = 0; pass < 2; ++pass)
-        for (const bool of_a : {true, false}) {
-            double x[4], z[4];
-            const int count = gjk_detail::axial_section(of_a ? ca : cb, x, z);
-            for (int k = 0; k < count; ++k) {
-                const double xk = of_a ? x[k] : x[k] + off,
-                             zk = of_a ? z[k] : flip * z[k] + f.t.z;  // B's, in A's frame
-                const double along = ux * xk + uz * zk, across = -uz * xk + ux * zk;
-                if (pass == 0) {
-                    if (of_a)
-                        a_along = std::fmax(a_along, along);
-                    else
-                        b_along = std::fmin(b_along, along);
-                } else if (of_a ? along >= a_along - level : along <= b_along + level) {
-                    double& lo = of_a ? a_lo : b_lo;
-                    double& hi = of_a ? a_hi : b_hi;
-                    lo = std::fmin(lo, across), hi = std::fmax(hi, across);
-                }
-            }
-        }
-    const double mid = 0.5 * (std::fmax(a_lo, b_lo) + std::fmin(a_hi, b_hi));
-    const double px = ux * a_along - uz * mid, pz = uz * a_along + ux * mid;
-    out.n = ux * e + Vec3{0, 0, uz};
-    out.point_a = px * e + Vec3{0, 0, pz};
-    out.point_b = out.point_a - best * out.n;
-    out.depth = best;
-    out.iterations = 1;
-    out.termination = Termination::RelativeError;
-    out.flat = false;
-    return true;
-}
-
 // The cores' separation along the unit axis n (A's frame, from A toward B): B's support value
 // along -n less A's along n, a lower bound of their gap when positive; a_point gets A's support
 // point along n.
@@ -290,7 +185,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         depth.point_a = depth.point_b = 0.5 * (c.point_a + c.point_b);
         depth.iterations += c.iterations;
         total = depth.depth + margin;
-    } else if (!apart && coaxial_depth(ca, pose_a, cb, pose_b, tolerance, depth)) {
+    } else if (!apart && gjk_detail::coaxial_depth(ca, pose_a, cb, pose_b, tolerance, depth)) {
         depth.iterations += c.iterations;
         total = depth.depth + margin;
     } else if (axis_shows_gap) {
