@@ -163,6 +163,7 @@ TEST(CoaxialDepth, CylindersConesAndCapsulesAboutOneAxis) {
                         }
                 const Real core_depth = placed.depth();
                 if (!(core_depth > 0)) {  // offset clear of a cone's slant or a segment's end
+                    ASSERT_GT(off, 0) << "coaxial drawings overlap along the axis; case " << i << " seed " << seed;
                     ++apart;
                     continue;
                 }
@@ -398,10 +399,13 @@ TEST(CoaxialDepth, TurnedPairsAtLooseTolerancesStayAboveTheDistance) {
     const uint64_t seed = 5102;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    int cases = 0, failures = 0;
+    int cases = 0, failures = 0, truths = 0;
+    double worst_truth = 0, worst_above = 0;
     for (int i = 0; i < 400; ++i) {
-        const ConeShape cone(1e3 * (1 + 9 * u(rng)), 0.1 + 0.9 * u(rng));
-        const SegmentShape segment(0.1 + 0.2 * u(rng));
+        const double radius = 1e3 * (1 + 9 * u(rng)), half_height = 0.1 + 0.9 * u(rng),
+                     half_length = 0.1 + 0.2 * u(rng);
+        const ConeShape cone(radius, half_height);
+        const SegmentShape segment(half_length);
         const SphereShape ball(1.0);
         const MinkowskiSumShape capsule(segment, ball);
         const double tilt = std::array{1e-6, 1e-3, 0.1, 0.5}[i % 4];
@@ -413,21 +417,42 @@ TEST(CoaxialDepth, TurnedPairsAtLooseTolerancesStayAboveTheDistance) {
         const Quat qb = qa * axis_angle({std::cos(phi), std::sin(phi), 0}, tilt);
         const Transform pb =
             make_transform(pa.apply({0.5 * u(rng), 0.5 * u(rng), (i % 2 ? 1 : -1) * (3 + 6 * u(rng))}), qb);
-        const DistanceResult truth = gjk_distance(cone, pa, capsule, pb, 1e-12, 256);
-        if (truth.intersecting) continue;
+        // Truth: the least over the capsule's segment of its points' distance to the cone (convex
+        // along the segment, so a golden-section search finds it), less the ball's radius.
+        const Vec3 s0 = pb.apply({0, 0, -half_length}), s1 = pb.apply({0, 0, half_length});
+        const auto to_cone = [&](double t) { return off_surface(s0 + t * (s1 - s0), pa, 1, radius, half_height, 0); };
+        double lo = 0, hi = 1;
+        for (int k = 0; k < 120; ++k) {
+            const double m1 = lo + 0.381966 * (hi - lo), m2 = hi - 0.381966 * (hi - lo);
+            (to_cone(m1) < to_cone(m2) ? hi : lo) = to_cone(m1) < to_cone(m2) ? m2 : m1;
+        }
+        const double truth = std::min({to_cone(0), to_cone(1), to_cone(0.5 * (lo + hi))}) - 1.0;
+        ASSERT_GT(truth, 1.0) << "the capsule is placed apart from the cone; case " << i << " seed " << seed;
+        ++truths;
+        worst_truth =
+            std::max(worst_truth, std::fabs(gjk_distance(cone, pa, capsule, pb, 1e-12, 256).distance - truth) / truth);
         for (const double tolerance : {0.25, 1e-2, 1e-6}) {
             for (int order = 0; order < 2; ++order) {
                 const DistanceResult r = order ? gjk_distance(capsule, pb, cone, pa, tolerance, 256)
                                                : gjk_distance(cone, pa, capsule, pb, tolerance, 256);
                 ++cases;
-                if (!(r.distance >= truth.distance * (1 - 1e-9)) && ++failures <= 10)
+                // Never below the distance (beyond rounding), and above it by at most GJK's stop allows:
+                // the cores' distance (the ball's radius 1 added) within its lower bound / (1 - tolerance).
+                const double allowed = (truth + 1) / (1 - tolerance) - 1;
+                worst_above = std::max(worst_above, (r.distance - truth) / (allowed - truth));
+                if ((!(r.distance >= truth * (1 - 1e-9)) || !(r.distance <= allowed * (1 + 1e-9))) && ++failures <= 10)
                     ADD_FAILURE() << "tilt " << tilt << " tolerance " << tolerance << " order " << order
-                                  << ": distance " << r.distance << " below the distance " << truth.distance
-                                  << "; case " << i << " seed " << seed;
+                                  << ": distance " << r.distance << ", truth " << truth << "; case " << i << " seed "
+                                  << seed;
             }
         }
     }
-    std::printf("turned capsules by wide cones: %d distances at loose tolerances\n", cases);
+    std::printf(
+        "turned capsules by wide cones: %d distances at loose tolerances, at most %.2g of the allowed excess above; "
+        "GJK at "
+        "1e-12 within %.2g of the truth\n",
+        cases, worst_above, worst_truth);
     EXPECT_EQ(failures, 0) << "seed " << seed;
-    EXPECT_GT(cases, 1200) << "seed " << seed;
+    EXPECT_EQ(truths, 400) << "seed " << seed;
+    EXPECT_LT(worst_truth, 1e-9) << "seed " << seed;
 }
