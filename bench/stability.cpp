@@ -256,9 +256,10 @@ Core core_of(const Shape& s, const Pose& p, V3 shift) {
     return c;
 }
 
-// Two cylinders with the same orientation (parallel axes), side by side: their axes' distance
-// less the radii, when their extents along the axis overlap by more than that (the family keeps
-// them so). Overlapping, the depth is the radii less the axes' distance (moving B out sideways).
+// Two cylinders with the same orientation (parallel axes): A - B is the cylinder about the axis
+// through their offset with the radii's and the half heights' sums, so the distance is that of the
+// point (the axes' distance, the offset along the axis) to a rectangle: across, along, or to its
+// corner; overlapping, the depth is the lesser push out (sideways or along the axis).
 void parallel_cylinders_truth(Case& k) {
     Truth& t = k.truth;
     t.size = std::max(radius(k.A), radius(k.B));
@@ -268,10 +269,13 @@ void parallel_cylinders_truth(Case& k) {
     const Real along = d.x * u.x + d.y * u.y + d.z * u.z;
     const P3 across{d.x - along * u.x, d.y - along * u.y, d.z - along * u.z};
     const Real apart = std::sqrt(across.x * across.x + across.y * across.y + across.z * across.z);
-    if (k.A.kind != Kind::Cylinder || k.B.kind != Kind::Cylinder || k.pa.q != k.pb.q ||
-        !(std::fabs(along) < Real(k.A.b + k.B.b) - Real(0.1) * t.size))
+    if (k.A.kind != Kind::Cylinder || k.B.kind != Kind::Cylinder || k.pa.q != k.pb.q)
         std::abort();  // not the configuration this truth is for
-    t.dist = apart - Real(k.A.a) - Real(k.B.a);
+    const Real gap_along = std::fabs(along) - Real(k.A.b) - Real(k.B.b), gap_across = apart - Real(k.A.a) - Real(k.B.a);
+    if (gap_along <= 0 || gap_across <= 0)
+        t.dist = std::max(gap_along, gap_across);
+    else
+        t.dist = std::sqrt(gap_along * gap_along + gap_across * gap_across);
     t.depth_known = true;
     t.depth = std::max(Real(0), -t.dist);
 }
@@ -1351,6 +1355,42 @@ Family parallel_cylinders() {
     return f;
 }
 
+// Coaxial cylinders (the same orientation, the axes apart by 0 to 0.3 of the smaller radius):
+// stacked end to end at every signed gap (flat ends facing), and deep overlaps with their ends
+// inside each other or centred together (copies in half of them), where A - B's side meets its
+// ends along a circle that an expansion can only approach. Radii and half heights 0.2 .. 1.2.
+// Truth: the closed form (parallel_cylinders_truth).
+Family coaxial_cylinders() {
+    Family f{"coaxial_cylinders", {}, false};
+    Rng r(708);
+    const double offsets[] = {0, 1e-9, 1e-4, 0.3};
+    const auto place = [&](Case& k, double off_share, double dz) {
+        k.pa.q = k.pb.q = rand_quat(r);
+        k.pa.p = {uni(r, -1, 1), uni(r, -1, 1), uni(r, -1, 1)};
+        const double phi = uni(r, 0, 2 * M_PI), off = off_share * std::min(k.A.a, k.B.a);
+        k.pb.p = add(k.pa.p, mul(quat_matrix<double>(k.pa.q), V3{off * std::cos(phi), off * std::sin(phi), dz}));
+        f.cases.push_back(k);
+    };
+    for (double g : signed_gaps())
+        for (int i = 0; i < 8; ++i) {
+            Case k;
+            k.type = QType::Pair;
+            k.A = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+            k.B = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+            const double size = std::max(radius(k.A), radius(k.B));
+            place(k, offsets[i % 4], (i / 4 ? 1 : -1) * (k.A.b + k.B.b + g * size));
+        }
+    for (int i = 0; i < 96; ++i) {
+        Case k;
+        k.type = QType::Pair;
+        k.A = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+        k.B = i % 2 ? cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2)) : k.A;
+        const double share = std::array{0.0, 0.5, 0.9}[size_t(i / 2 % 3)];
+        place(k, offsets[i / 6 % 4], (i / 24 % 2 ? 1 : -1) * share * (k.A.b + k.B.b));
+    }
+    return f;
+}
+
 Family large_hulls() {
     return gap_family("large_hulls", 606, 6, [&](Rng& r, int rep, int) {
         const Shape A = grid_box(uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), uni(r, 0.5, 1.5), 16);  // 1352 points
@@ -1609,6 +1649,7 @@ int main(int argc, char** argv) {
         true));
     fams.push_back(arg_swaps());
     fams.push_back(parallel_cylinders());
+    fams.push_back(coaxial_cylinders());
 
     // Truths, and the hit-rate bounds: every family must have judged cases of both outcomes.
     bool one_sided = false;
