@@ -212,13 +212,14 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
 // below the depth. A turn of B by the axes' angle moves each by at most the turn's bound, which puts
 // the answer within twice that of the depth.
 bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
-                   double tolerance, epa_detail::CoreDepth& out) {
+                   double tolerance, epa_detail::CoreDepth& out, double* near_error) {
     if (!axial_pair(ca, cb)) return false;
     // Within the poses' rounding, or within the tolerance of the depth (checked once it is known;
     // the depth is at most twice the reaches).
     const AxesTurn w = axes_turn(ca, pose_a, cb, pose_b);
     const double bound = w.bound;
-    if (!(w.noise < INFINITY) || !(w.within_rounding() || 2 * bound <= 2 * tolerance * (w.reach_a + w.reach_b)))
+    const bool near = near_error != nullptr && 2 * bound <= kNearlyParallel * (w.reach_a + w.reach_b);
+    if (!(w.noise < INFINITY) || !(w.within_rounding() || near || 2 * bound <= 2 * tolerance * (w.reach_a + w.reach_b)))
         return false;
     // The cones' slant normals' components (zero: no cone).
     struct Slant {
@@ -254,7 +255,8 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
         }
     });
     if (!(best > 0) || !std::isfinite(best)) return false;
-    if (!(w.within_rounding() || 2 * bound * (1 + tolerance) <= tolerance * best)) return false;
+    const bool accepted = w.within_rounding() || 2 * bound * (1 + tolerance) <= tolerance * best;
+    if (!accepted && !near) return false;
     // The deepest points: B moved by the depth along u touches A where A's section's feature
     // along u (a vertex or an edge) meets B's along -u; across u, the middle of where they
     // overlap. point_a is that contact, point_b it less the depth along u (the supports' own
@@ -290,9 +292,13 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
     out.point_a = px * e + Vec3{0, 0, pz};
     out.point_b = out.point_a - best * out.n;
     out.depth = best;
-    out.iterations = 1;
+    out.iterations = uint32_t(n);
     out.termination = Termination::RelativeError;
     out.flat = false;
+    if (!accepted) {
+        *near_error = 2 * bound;
+        return false;
+    }
     return true;
 }
 

@@ -42,7 +42,19 @@ bool parallel_axes_distance(const kernels::CoreOf& ca, const Transform& pose_a, 
 // section) off B by at most that bound. The expansion can only approach the circle along which
 // coaxial sides meet (two coincident cylinders took its 254 support calls to come within 6e-4 of the
 // depth, in about 0.5 ms). False otherwise, or when the cores do not overlap.
+//
+// near_error (optional): when the axes are parallel within kNearlyParallel but not within the
+// tolerance, out receives the answer all the same and *near_error twice the turn's bound (the
+// answer's depth, an upper bound, is at most that above the depth, so its depth less near_error is
+// a lower bound), and the call returns false: the caller's expansion may do better, or stop short
+// (coaxial sides' circle, turned). *near_error is left alone otherwise.
 bool coaxial_depth(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
-                   const Transform& pose_b, double tolerance, epa_detail::CoreDepth& out);
+                   const Transform& pose_b, double tolerance, epa_detail::CoreDepth& out, double* near_error = nullptr);
+
+// The axes' turn bound, as a share of the reaches' sum, within which coaxial_depth offers its
+// answer to a caller that asks (near_error): turns up to about 5e-6 rad. near_error, at most 1e-5
+// of the reaches, is then well below where the expansion stops short on a turned coaxial circle
+// (4e-4 to 9e-4 of the size); beyond, the expansion goes on to its 252 support calls.
+inline constexpr double kNearlyParallel = 1e-5;
 
 }  // namespace kairos::gjk_detail

@@ -31,7 +31,9 @@ namespace kairos {
 // MAX_ITERATIONS (at most min(max(max_iterations, 16), 128) support calls; the cores' GJK, for
 // rounded shapes, gets at least 16 too). The last two return
 // the nearest face found, whose depth is a lower bound, or, when the polytope never held the
-// origin, the smallest support value of C seen along a direction (an upper bound).
+// origin, the smallest support value of C seen along a direction (an upper bound); for
+// cylinders, cones and capsules whose axes are parallel within about 5e-6 rad, the closed form's
+// lower bound when it is the larger (gjk/parallel_axes.hpp, coaxial_depth).
 DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                                double tolerance, uint32_t max_iterations);
 
