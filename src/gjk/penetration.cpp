@@ -183,9 +183,14 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         total = depth.depth + margin;
     } else if (settled.depth > 0) {
         // The cores meet at GJK's points, a rounding apart (the expansion's may not be at the
-        // contact: a curved rim's support point as its bound's witness).
+        // contact: a curved rim's support point as its bound's witness); B's deepest point is the
+        // depth from A's along the axis, as the result's contract has them. (Not always a
+        // rounding: a capsule of length 0, a ball, whose centre lay 0.18 inside a cone 8282 long
+        // stopped GJK on no progress, and its points were reported the radius apart for a depth
+        // 0.18 larger; fuzz_queries.)
         depth = settled;
-        depth.point_a = depth.point_b = 0.5 * (c.point_a + c.point_b);
+        depth.point_a = 0.5 * (c.point_a + c.point_b);
+        depth.point_b = depth.point_a - settled.depth * settled.n;
         depth.iterations += c.iterations;
         total = depth.depth + margin;
     } else if (!apart && gjk_detail::coaxial_depth(ca, pose_a, cb, pose_b, tolerance, depth, &near_error)) {

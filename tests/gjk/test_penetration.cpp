@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -982,6 +983,77 @@ TEST(Penetration, PointCoresInsideCylindersAndConesTakeTheNearestBoundary) {
     EXPECT_GT(side, 150) << "seed " << seed;
     EXPECT_GT(end, 100) << "seed " << seed;
     EXPECT_GT(expansion_agrees, expansion_cases / 3) << "seed " << seed;
+}
+
+// Capsules of length 0, 1e-300 and 1e-12 (balls, their cores segments of no length) centred inside
+// needle cones and cylinders (8e3 to 1e4 long, 0.2 to 0.9 wide), both orders. A fuzz_queries
+// finding: such a ball's centre 0.18 inside a cone 8282 long stopped the cores' GJK on no progress
+// beside the cone, the expansion behind that stop found the depth, and the deepest points were
+// taken as GJK's (a rounding apart, as such stops usually are): the signed distance was -1.18 with
+// points 1.00 apart. Truth: the ball's radius plus its centre's room in the solid
+// (depth_by_meridian_scan). Checked: points distance * axis apart on every termination (the
+// contract) and the depth, both over the pair's size, and the axis unit.
+TEST(Penetration, ShortCapsulesInsideNeedlesKeepTheirPointsTheDepthApart) {
+    const uint64_t seed = 52011;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, failures = 0, unconverged = 0;
+    double worst_gap = 0, worst_depth = 0;
+    for (int i = 0; i < 121; ++i) {
+        // Case 0: the finding as it was; then random ones.
+        const bool finding = i == 0;
+        const bool is_cone = finding || i % 2 == 1;
+        const double r = finding ? 0.45294117647058824 : 0.2 + 0.7 * u(rng);
+        const double hh = finding ? 4141.1764705882351 : 4000 + 1000 * u(rng);
+        const CylinderShape cyl(r, hh);
+        const ConeShape cone(r, hh);
+        const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
+        const double core_length = std::array{0.0, 1e-300, 1e-12}[size_t(i % 3)], radius = finding ? 1.0 : 0.2 + u(rng);
+        const CapsuleShape ball(radius, core_length);
+        const Transform xs =
+            finding ? pose({-4, -4, -4}, Quat{0, 0, 0, 1}) : pose(10 * random_unit(rng), random_quat(rng));
+        // The centre: anywhere inside, away from the ends.
+        const double a = 2 * std::acos(-1.0) * u(rng), z = finding ? 0.031372549019607732 : hh * (1.6 * u(rng) - 0.8);
+        const Vec3 u_dir{std::cos(a), std::sin(a), 0};
+        const double rim = is_cone ? r * (hh - z) / (2 * hh) : r;
+        const Vec3 local = finding ? Vec3{0.031372549019607732, 0.031372549019607732, 0.031372549019607732}
+                                   : z * Vec3{0, 0, 1} + rim * std::sqrt(u(rng)) * u_dir;
+        const double rho = std::hypot(local.x, local.y);
+        const Vec3 toward = rho > 0 ? Vec3{local.x / rho, local.y / rho, 0} : u_dir;
+        const double truth = -(radius + depth_by_meridian_scan(solid, local, toward));
+        const Quat qb = finding ? normalized(Quat{-0.57148029670283973, -0.57148029670283973, -0.14223505700530684,
+                                                  -0.57148029670283973})
+                                : random_quat(rng);
+        const Transform xb = pose(xs.apply(local), qb);
+        for (int order = 0; order < 2; ++order) {
+            const DistanceResult d = order ? signed_distance(solid, xs, ball, xb, 1e-10, 256)
+                                           : signed_distance(ball, xb, solid, xs, 1e-10, 256);
+            ++cases;
+            const bool converged =
+                d.termination == Termination::RelativeError || d.termination == Termination::RepeatedSupport;
+            unconverged += !converged;
+            // Over the pair's size: the capsule-first order stops on rounding beside the needle
+            // (up to 1.5e-10 of the size off, the points 5e-9 of it; tests/fuzz/findings/README.md).
+            const double size = std::hypot(r, hh);
+            const double gap = length(d.point_b - d.point_a - d.distance * d.axis) / size;
+            const double off = std::fabs(d.distance - truth) / size;
+            worst_gap = std::max(worst_gap, gap);
+            worst_depth = std::max(worst_depth, off);
+            if ((!(gap <= 1e-7) || !(off <= 1e-9) || !(std::fabs(std::sqrt(dot(d.axis, d.axis)) - 1) <= 1e-12)) &&
+                ++failures <= 10)
+                ADD_FAILURE() << (is_cone ? "cone" : "cylinder") << " r " << r << " h " << hh << ", capsule length "
+                              << core_length << " radius " << radius << ", order " << order << ": distance "
+                              << d.distance << ", truth " << truth << ", points off distance * axis by " << gap
+                              << " of the size, termination " << int(d.termination) << "; case " << i << " seed "
+                              << seed;
+        }
+    }
+    std::printf(
+        "short capsules in needles: %d signed distances (%d unconverged), points off by at most %.3g, "
+        "depth by %.3g of the size\n",
+        cases, unconverged, worst_gap, worst_depth);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(unconverged, 0) << "seed " << seed;  // the finding's path at least
 }
 
 // Cylinders and cones of subnormal size (5e-324 .. 1e-310) against a unit ball: centred on them,
