@@ -1330,6 +1330,15 @@ Family flat_thin() {
     });
 }
 
+// A pair case of two cylinders, radii and half heights 0.2 .. 1.2 (A's drawn first), not placed.
+Case cylinder_pair(Rng& r) {
+    Case k;
+    k.type = QType::Pair;
+    k.A = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+    k.B = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+    return k;
+}
+
 // Two parallel cylinders side by side at every gap (a line contact: GJK's simplex runs along the
 // contact line, and an estimate within the tolerance of the gap leaves the axis free by
 // sqrt(2 tolerance); bench_gjk and test_gjk_curved have the same case). Radii and half heights
@@ -1340,10 +1349,7 @@ Family parallel_cylinders() {
     Rng r(707);
     for (double g : signed_gaps())
         for (int i = 0; i < 8; ++i) {
-            Case k;
-            k.type = QType::Pair;
-            k.A = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
-            k.B = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+            Case k = cylinder_pair(r);
             const double size = std::max(radius(k.A), radius(k.B));
             k.pa.q = k.pb.q = rand_quat(r);
             k.pa.p = {uni(r, -1, 1), uni(r, -1, 1), uni(r, -1, 1)};
@@ -1373,10 +1379,7 @@ Family coaxial_cylinders() {
     };
     for (double g : signed_gaps())
         for (int i = 0; i < 8; ++i) {
-            Case k;
-            k.type = QType::Pair;
-            k.A = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
-            k.B = cylinder(uni(r, 0.2, 1.2), uni(r, 0.2, 1.2));
+            Case k = cylinder_pair(r);
             const double size = std::max(radius(k.A), radius(k.B));
             place(k, offsets[i % 4], (i / 4 ? 1 : -1) * (k.A.b + k.B.b + g * size));
         }
