@@ -211,16 +211,17 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
 // measured with the shapes' own supports, so it separates them whatever their placement: never
 // below the depth. A turn of B by the axes' angle moves each by at most the turn's bound, which puts
 // the answer within twice that of the depth.
-bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
-                   double tolerance, epa_detail::CoreDepth& out, double* near_error) {
-    if (!axial_pair(ca, cb)) return false;
+CoaxialAnswer coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                            double tolerance, bool offer_near) {
+    CoaxialAnswer answer;
+    if (!axial_pair(ca, cb)) return answer;
     // Within the poses' rounding, or within the tolerance of the depth (checked once it is known;
     // the depth is at most twice the reaches).
     const AxesTurn w = axes_turn(ca, pose_a, cb, pose_b);
     const double bound = w.bound;
-    const bool near = near_error != nullptr && 2 * bound <= kNearlyParallel * (w.reach_a + w.reach_b);
+    const bool near = offer_near && 2 * bound <= kNearlyParallel * (w.reach_a + w.reach_b);
     if (!(w.noise < INFINITY) || !(w.within_rounding() || near || 2 * bound <= 2 * tolerance * (w.reach_a + w.reach_b)))
-        return false;
+        return answer;
     // The cones' slant normals' components (zero: no cone).
     struct Slant {
         double across = 0, up = 0;
@@ -254,9 +255,9 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
             if (d < best) best = d, chosen = i;
         }
     });
-    if (!(best > 0) || !std::isfinite(best)) return false;
+    if (!(best > 0) || !std::isfinite(best)) return answer;
     const bool accepted = w.within_rounding() || 2 * bound * (1 + tolerance) <= tolerance * best;
-    if (!accepted && !near) return false;
+    if (!accepted && !near) return answer;
     // The deepest points: B moved by the depth along u touches A where A's section's feature
     // along u (a vertex or an edge) meets B's along -u; across u, the middle of where they
     // overlap. point_a is that contact, point_b it less the depth along u (the supports' own
@@ -288,6 +289,7 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
         }
     const double mid = 0.5 * (std::fmax(a_lo, b_lo) + std::fmin(a_hi, b_hi));
     const double px = ux * a_along - uz * mid, pz = uz * a_along + ux * mid;
+    epa_detail::CoreDepth& out = answer.depth;
     out.n = ux * e + Vec3{0, 0, uz};
     out.point_a = px * e + Vec3{0, 0, pz};
     out.point_b = out.point_a - best * out.n;
@@ -295,11 +297,9 @@ bool coaxial_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, 
     out.iterations = uint32_t(n);
     out.termination = Termination::RelativeError;
     out.flat = false;
-    if (!accepted) {
-        *near_error = 2 * bound;
-        return false;
-    }
-    return true;
+    answer.kind = accepted ? CoaxialAnswer::Kind::Accepted : CoaxialAnswer::Kind::Near;
+    if (!accepted) answer.error = 2 * bound;
+    return answer;
 }
 
 }  // namespace kairos::gjk_detail

@@ -34,25 +34,31 @@ int axial_section(const kernels::CoreOf& c, double (&x)[4], double (&z)[4]);
 bool parallel_axes_distance(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
                             const Transform& pose_b, double tolerance, LocalDistance& out, Vec3& center_offset);
 
+// What coaxial_depth found. Accepted: `depth` is the depth to the tolerance. Near (asked for by
+// offer_near, axes parallel within kNearlyParallel but not within the tolerance): `depth` is an
+// upper bound at most `error` (twice the turn's bound) above the depth, so its depth less `error`
+// is a lower bound; the caller's expansion may do better, or stop short (coaxial sides' circle,
+// turned). None: no answer (not an axial pair, axes not parallel enough, no overlap).
+struct CoaxialAnswer {
+    enum class Kind { None, Accepted, Near };
+    Kind kind = Kind::None;
+    epa_detail::CoreDepth depth;  // Accepted and Near only
+    double error = 0;             // Near only
+};
+
 // The depth of two overlapping such cores, exact: the least of the candidate translations along the
 // sections' edge normals, each measured with the shapes' own supports (so never below the depth).
-// In A's frame, as the expansion's answer. Taken when the axes are parallel within the poses'
+// In A's frame, as the expansion's answer. Accepted when the axes are parallel within the poses'
 // rounding or within the tolerance of the depth (relative, as the expansion's stop): the answer is
 // then within twice the turn's bound of the depth, and B's deepest point (from the untilted
 // section) off B by at most that bound. The expansion can only approach the circle along which
 // coaxial sides meet (two coincident cylinders took its 254 support calls to come within 6e-4 of the
-// depth, in about 0.5 ms). False otherwise, or when the cores do not overlap.
-//
-// near_error (optional): when the axes are parallel within kNearlyParallel but not within the
-// tolerance, out receives the answer all the same and *near_error twice the turn's bound (the
-// answer's depth, an upper bound, is at most that above the depth, so its depth less near_error is
-// a lower bound), and the call returns false: the caller's expansion may do better, or stop short
-// (coaxial sides' circle, turned). *near_error is left alone otherwise.
-bool coaxial_depth(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
-                   const Transform& pose_b, double tolerance, epa_detail::CoreDepth& out, double* near_error = nullptr);
+// depth, in about 0.5 ms).
+CoaxialAnswer coaxial_depth(const kernels::CoreOf& ca, const Transform& pose_a, const kernels::CoreOf& cb,
+                            const Transform& pose_b, double tolerance, bool offer_near);
 
 // The axes' turn bound, as a share of the reaches' sum, within which coaxial_depth offers its
-// answer to a caller that asks (near_error): turns up to about 5e-6 rad. near_error, at most 1e-5
+// answer to a caller that asks (offer_near): turns up to about 5e-6 rad. Its error, at most 1e-5
 // of the reaches, is then well below where the expansion stops short on a turned coaxial circle
 // (4e-4 to 9e-4 of the size); beyond, the expansion goes on to its 252 support calls.
 inline constexpr double kNearlyParallel = 1e-5;

@@ -170,9 +170,13 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         axis_shows_gap = c.distance - along <= 0x1p-30 * scale;
     }
     CoreDepth depth;
-    // Axes parallel within gjk_detail::kNearlyParallel but not within the tolerance: depth then
-    // holds coaxial_depth's answer, at most near_error above the depth (-1: none).
-    double near_error = -1;
+    // Cylinders, cones and capsules about parallel axes (Near: the expansion's fallback, below).
+    gjk_detail::CoaxialAnswer coaxial;
+    const auto coaxial_accepted = [&] {
+        coaxial = gjk_detail::coaxial_depth(ca, pose_a, cb, pose_b, tolerance, true);
+        return coaxial.kind == gjk_detail::CoaxialAnswer::Kind::Accepted;
+    };
+    const auto near = [&] { return coaxial.kind == gjk_detail::CoaxialAnswer::Kind::Near; };
     double total;
     const bool point_solid = point_and_solid(ca, cb);
     // The room decides inside too, should it round otherwise than the cores' closed-form distance
@@ -193,7 +197,8 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         depth.point_b = depth.point_a - settled.depth * settled.n;
         depth.iterations += c.iterations;
         total = depth.depth + margin;
-    } else if (!apart && gjk_detail::coaxial_depth(ca, pose_a, cb, pose_b, tolerance, depth, &near_error)) {
+    } else if (!apart && coaxial_accepted()) {
+        depth = coaxial.depth;
         depth.iterations += c.iterations;
         total = depth.depth + margin;
     } else if (axis_shows_gap) {
@@ -205,7 +210,6 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         depth.termination = c.termination;
         total = margin - c.distance;
     } else {
-        const CoreDepth near = depth;
         // The tetrahedron alone takes 6 to 12 support calls.
         const uint32_t budget = max_iterations < 128 ? (max_iterations < 16 ? 16 : max_iterations) : 128;
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
@@ -222,7 +226,7 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
                 // started again from nothing, and near-concentric generic shapes spent a third of
                 // their time repeating the first 128 steps (a world step seconds long under the
                 // sanitizers, found by fuzzing). A caller's max_iterations bounds the calls in all.
-                if (d.termination == Termination::MaxIterations && max_iterations > budget && !(near_error >= 0)) {
+                if (d.termination == Termination::MaxIterations && max_iterations > budget && !near()) {
                     const uint32_t large = max_iterations < 252 ? max_iterations : 252;
                     d = std::make_unique<Expander<P, kMaxVerticesLarge>>(expander, large)->run(tolerance);
                 }
@@ -233,15 +237,15 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // expansion approaches as slowly as the untilted one (of coaxial cylinders and cones
         // turned by 1e-9 to 1e-6 rad, over half used up 252 support calls, up to 0.4 ms, and
         // stopped up to 8e-4 of the size short). Unconverged, its answer E is a lower bound of the
-        // depth, and so is the closed form's U less near_error (U lies at most that above the
-        // depth): the larger is kept, with U's axis and contact, at most near_error short.
-        if (near_error >= 0 && !depth.flat &&
+        // depth, and so is the closed form's U less its error (U lies at most that above the
+        // depth): the larger is kept, with U's axis and contact, at most that error short.
+        if (near() && !depth.flat &&
             (depth.termination == Termination::MaxIterations || depth.termination == Termination::NoProgress) &&
-            near.depth - near_error > depth.depth) {
-            const uint32_t calls = depth.iterations + near.iterations;
+            coaxial.depth.depth - coaxial.error > depth.depth) {
+            const uint32_t calls = depth.iterations + coaxial.depth.iterations;
             const Termination stop = depth.termination;
-            depth = near;
-            depth.depth = near.depth - near_error;
+            depth = coaxial.depth;
+            depth.depth -= coaxial.error;
             depth.point_b = depth.point_a - depth.depth * depth.n;
             depth.iterations = calls;
             depth.termination = stop;
