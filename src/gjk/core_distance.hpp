@@ -32,13 +32,13 @@ inline bool unproven_rounding_stop(bool bounded, Termination termination) {
     return !bounded && (termination == Termination::JohnsonFailed || termination == Termination::NoProgress);
 }
 
-// A point core (a ball's centre, a point) and a box, cylinder or cone core, either order: their
+// A box, cylinder or cone core (solid_core); with a point core (a ball's centre, a point), either order: their
 // distance and the point's depth inside have closed forms (closed_forms.hpp, penetration.cpp).
+inline bool solid_core(const kernels::CoreOf& c) {
+    return c.core == kernels::Core::Box || c.core == kernels::Core::Revolution;
+}
 inline bool point_and_solid(const kernels::CoreOf& ca, const kernels::CoreOf& cb) {
-    const auto solid = [](const kernels::CoreOf& x) {
-        return x.core == kernels::Core::Box || x.core == kernels::Core::Revolution;
-    };
-    return (ca.core == kernels::Core::Point && solid(cb)) || (solid(ca) && cb.core == kernels::Core::Point);
+    return (ca.core == kernels::Core::Point && solid_core(cb)) || (solid_core(ca) && cb.core == kernels::Core::Point);
 }
 
 // Whether core_distance has a closed form for the pair (points and segments among themselves,

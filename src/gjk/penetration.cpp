@@ -96,6 +96,52 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
     return d;
 }
 
+// A segment core (a capsule's, a segment) and a box, cylinder or cone core, either order, the
+// segment's centre inside the solid by D0 along its exact axis n0 (point_in_solid_depth): the
+// depth D is at least D0 (every point of the segment needs at least its centre's push out along
+// any axis) and at most U = D0 + h |n0 . e| (the segment's push out along n0, h its half length, e
+// its direction). A segment across the axis or short (capsules of length 0 or 1e-12: balls) has U
+// within the tolerance of D0, so U is the depth, exact and in one call; the expansion on such a
+// ball inside a needle cone stopped on rounding with its axis up to 1.5e-3 rad off the normal, or
+// converged on sliver faces to a depth 1.5e-6 of itself too deep. Otherwise U bounds the
+// expansion's answer, should it pass U by more than the tolerance. `upper` holds U with n0 and the
+// deepest points: the segment's end that needs the most push and the solid's point U from it along
+// the axis; within the tolerance of a tie (the segment across n0), the centre's and the solid's
+// point U from it (the end may lie outside the solid: a capsule along a cylinder's side, through
+// its end). `lower` is D0, or 0 when the centre is not inside or the pair is not such a pair.
+struct SegmentInSolid {
+    CoreDepth upper;
+    double lower = 0;
+};
+SegmentInSolid segment_in_solid(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                                double tolerance) {
+    SegmentInSolid s;
+    const bool a_segment = ca.core == Core::Segment && solid_core(cb);
+    if (!a_segment && !(solid_core(ca) && cb.core == Core::Segment)) return s;
+    CoreOf centre_a = ca, centre_b = cb;
+    (a_segment ? centre_a : centre_b).core = Core::Point;  // the segment's centre: its local origin
+    const CoreDepth d = point_in_solid_depth(centre_a, pose_a, centre_b, pose_b);
+    if (!(d.depth > 0)) return s;
+    // The segment's half extent in A's frame; along n0 it adds to the push out. B leaves A along n0:
+    // A's end farthest along it needs the most push, or B's least far.
+    const double half = segment_half_length(*(a_segment ? ca : cb).shape);
+    const Vec3 e = half * (a_segment ? Vec3{0, 0, 1} : pose_a.to_local_direction(pose_b.rotation * Vec3{0, 0, 1}));
+    const double along = dot(d.n, e);
+    s.upper = d;
+    s.upper.depth = d.depth + std::fabs(along);
+    if (!std::isfinite(s.upper.depth)) return s;
+    const Vec3 end = std::fabs(along) <= tolerance * s.upper.depth ? Vec3{} : (along < 0 ? -1.0 * e : e);
+    if (a_segment) {
+        s.upper.point_a = d.point_a + end;
+        s.upper.point_b = s.upper.point_a - s.upper.depth * d.n;
+    } else {
+        s.upper.point_b = d.point_b - end;
+        s.upper.point_a = s.upper.point_b + s.upper.depth * d.n;
+    }
+    s.lower = d.depth;
+    return s;
+}
+
 // The cores' separation along the unit axis n (A's frame, from A toward B): B's support value
 // along -n less A's along n, a lower bound of their gap when positive; a_point gets A's support
 // point along n.
@@ -179,11 +225,16 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     const auto near = [&] { return coaxial.kind == gjk_detail::CoaxialAnswer::Kind::Near; };
     double total;
     const bool point_solid = point_and_solid(ca, cb);
+    const SegmentInSolid segment = segment_in_solid(ca, pose_a, cb, pose_b, tolerance);
     // The room decides inside too, should it round otherwise than the cores' closed-form distance
     // (a GJK loop from a point 9e-8 inside a cone 3e-7 wide once took the cores as apart).
     if (point_solid) depth = point_in_solid_depth(ca, pose_a, cb, pose_b);
     if (point_solid && (c.overlap || depth.depth > 0)) {
         depth.depth = std::fmax(depth.depth, 0.0);
+        total = depth.depth + margin;
+    } else if (segment.lower > 0 && segment.upper.depth - segment.lower <= tolerance * segment.upper.depth) {
+        depth = segment.upper;
+        depth.iterations += c.iterations;
         total = depth.depth + margin;
     } else if (settled.depth > 0) {
         // The cores meet at GJK's points, a rounding apart (the expansion's may not be at the
@@ -247,6 +298,16 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
             depth = coaxial.depth;
             depth.depth -= coaxial.error;
             depth.point_b = depth.point_a - depth.depth * depth.n;
+            depth.iterations = calls;
+            depth.termination = stop;
+        }
+        // A segment inside a solid: an expansion past the segment's push out along its centre's
+        // axis by more than the tolerance (rounding on sliver faces) takes that push out instead,
+        // keeping its termination.
+        if (segment.lower > 0 && !depth.flat && !(depth.depth <= segment.upper.depth * (1 + tolerance))) {
+            const uint32_t calls = depth.iterations + segment.upper.iterations;
+            const Termination stop = depth.termination;
+            depth = segment.upper;
             depth.iterations = calls;
             depth.termination = stop;
         }
