@@ -1079,6 +1079,149 @@ TEST(Penetration, ShortCapsulesInsideNeedlesKeepTheirPointsTheDepthApart) {
     EXPECT_GT(short_cases, 160) << "seed " << seed;
 }
 
+// Capsules and segments whose core's centre lies inside a box, against the exact depth of the
+// segment's core in the box: A - B is the sum of the segment and the box, whose facets are the box's
+// faces and the parallelograms of the segment with a box edge, so the depth is the least support
+// value of A - B over those normals (long double, from the poses as placed). The centre's closed
+// form (penetration.cpp, segment_in_solid) takes a segment whose push out along the centre's axis
+// is within the tolerance of the centre's room: across that axis exactly or within 1e-9 rad, or of
+// length 0 or 1e-12; the others go to the expansion, held to the same truth and to the invariants
+// of `check` (both orders; points on the support planes, B moved by the depth touching A). Flat
+// boxes, half lengths from 0 to 1.5 times the box, scales 1e-3 .. 1e3, 1e4 of the size from the
+// origin.
+TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
+    const uint64_t seed = 53011;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Judge j;
+    int across = 0, closed_form = 0;
+    const double lengths[] = {0, 1e-12, 1e-6, 1e-3, 0.3, 1.5};
+    for (int i = 0; i < 480; ++i) {
+        const double scale = std::pow(10.0, 3 * static_cast<int>(rng() % 3) - 3);
+        const Vec3 h = scale * Vec3{0.3 + u(rng), 0.3 + u(rng), (i % 4 == 0 ? 1e-3 : 1.0) * (0.3 + u(rng))};
+        const BoxShape box(h);
+        // The centre anywhere inside, the nearest face's axis k.
+        const Vec3 c{h.x * (1.8 * u(rng) - 0.9), h.y * (1.8 * u(rng) - 0.9), h.z * (1.8 * u(rng) - 0.9)};
+        int k = 0;
+        for (int m = 1; m < 3; ++m)
+            if (h[m] - std::fabs(c[m]) < h[k] - std::fabs(c[k])) k = m;
+        // The segment's direction in the box's frame: random, across the face's normal, across it
+        // but for 1e-9 rad, or along it.
+        const int kind = i % 4;
+        Vec3 e = random_unit(rng);
+        if (kind == 1 || kind == 2) {
+            e[k] = 0;
+            e = normalized_or(e, Vec3{k == 0 ? 0.0 : 1.0, k == 0 ? 1.0 : 0.0, 0});
+            if (kind == 2) {
+                e[k] = 1e-9;
+                e = normalized_or(e, e);
+            }
+        } else if (kind == 3) {
+            e = Vec3{};
+            e[k] = 1;
+        }
+        const double half = std::max(h.x, std::max(h.y, h.z)) * lengths[rng() % 6];
+        const double radius = i % 3 == 0 ? 0.0 : 0.1 * scale;
+        const CapsuleShape capsule(radius, half);
+        const SegmentShape segment(half);
+        const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
+        const double far = i % 5 == 0 ? 1e4 * scale : 0;
+        const Quat qs = random_quat(rng);
+        const Transform xs = pose(far * Vec3{1, -1, 0.5} + scale * random_unit(rng), qs);
+        // The rod's z along e (turned about z x e), centred at c.
+        const Vec3 axis = cross(Vec3{0, 0, 1}, e);
+        const double sine = length(axis);
+        const Quat turn = sine > 0 ? axis_angle((1 / sine) * axis, std::atan2(sine, e.z))
+                                   : (e.z > 0 ? Quat{0, 0, 0, 1} : Quat{1, 0, 0, 0});
+        const Transform xr = pose(xs.apply(c), normalized(qs * turn));
+        // The truth from the poses as placed, in the box's frame.
+        using R = long double;
+        const Vec3 cr = xs.to_local_direction(xr.translation - xs.translation);
+        const Vec3 er = xs.to_local_direction(xr.rotation * Vec3{0, 0, 1});
+        const auto push = [&](R nx, R ny, R nz) {  // the support value of A - B along n, less |c . n|
+            const R len = std::sqrt(nx * nx + ny * ny + nz * nz);
+            if (!(len > 0)) return R(INFINITY);
+            nx /= len, ny /= len, nz /= len;
+            const R boxes = h.x * std::fabs(nx) + h.y * std::fabs(ny) + h.z * std::fabs(nz);
+            const R seg = half * std::fabs(er.x * nx + er.y * ny + er.z * nz);
+            return boxes + seg - std::fabs(cr.x * nx + cr.y * ny + cr.z * nz);
+        };
+        R depth = INFINITY;
+        for (int m = 0; m < 3; ++m) {
+            R n[3] = {0, 0, 0};
+            n[m] = 1;
+            depth = std::min(depth, push(n[0], n[1], n[2]));
+            // e x the box's edge along m.
+            R x[3] = {er.x, er.y, er.z}, g[3];
+            g[0] = x[1] * n[2] - x[2] * n[1], g[1] = x[2] * n[0] - x[0] * n[2], g[2] = x[0] * n[1] - x[1] * n[0];
+            if (half > 0) depth = std::min(depth, push(g[0], g[1], g[2]));
+        }
+        const double truth = -(double(depth) + radius);
+        const double room = h[k] - std::fabs(c[k]);
+        const bool by_centre = half * std::fabs(er[k]) <= 1e-12 * room;  // at check's tolerance
+        across += kind == 1 || kind == 2;
+        closed_form += by_centre;
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "seed %llu case %d kind %d half %.3g scale %g far %g%s",
+                      static_cast<unsigned long long>(seed), i, kind, half / scale, scale, far,
+                      by_centre ? " (the centre's closed form)" : "");
+        check(box, xs, rod, xr, truth, scale, far > 0 ? 1e-9 : 1e-10, buf, j);
+    }
+    std::printf(
+        "segments centred in boxes: %d signed distances (%d overlapping), %d pairs across the nearest face's "
+        "normal, %d by the centre's closed form; error over the size median %.3g, max %.3g\n",
+        j.cases, j.overlapping, across, closed_form, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0) << "seed " << seed;
+    EXPECT_EQ(j.overlapping, j.cases) << "seed " << seed;
+    EXPECT_GT(closed_form, 150) << "seed " << seed;
+    EXPECT_LT(closed_form, 400) << "seed " << seed;
+}
+
+// Capsules and segments centred inside cylinders and cones, along the tangent of the circle about
+// the axis through their centre: every boundary normal in the centre's axial half-plane (the end's,
+// the side's, a cone's slant) is across them, so B moved by the centre's room along its normal
+// touches A, and the depth is that room, whatever the length (up to 3 times the solid's radius, the
+// ends outside). The centre's closed form takes them all. Truth: the room by a scan of the support
+// mapping (depth_by_meridian_scan), plus the radius; the invariants of `check` (gjk_distance after
+// the move) confirm the axis. Needles, flat and plain solids, both orders.
+TEST(Penetration, TangentSegmentsInCylindersAndConesTakeTheCentresRoom) {
+    const uint64_t seed = 53012;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Judge j;
+    for (int i = 0; i < 240; ++i) {
+        const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);  // needles .. flat
+        const double r = (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect), hh = (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
+        const bool is_cone = i % 2 == 1;
+        const CylinderShape cyl(r, hh);
+        const ConeShape cone(r, hh);
+        const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
+        const double a = 2 * std::acos(-1.0) * u(rng), z = hh * (1.8 * u(rng) - 0.9);
+        const Vec3 radial{std::cos(a), std::sin(a), 0};
+        const double rim = is_cone ? r * (hh - z) / (2 * hh) : r;
+        const Vec3 local = z * Vec3{0, 0, 1} + (0.05 + 0.9 * u(rng)) * rim * radial;
+        const double room = depth_by_meridian_scan(solid, local, radial);
+        const double half = 3 * r * u(rng), radius = i % 3 == 0 ? 0.0 : 0.2 * r;
+        const CapsuleShape capsule(radius, half);
+        const SegmentShape segment(half);
+        const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
+        const Quat qs = random_quat(rng);
+        const Transform xs = pose(random_unit(rng), qs);
+        // The rod's z along the tangent (0 0 1) x radial: a quarter turn about the radial direction.
+        const Quat turn = axis_angle(radial, -0.5 * std::acos(-1.0));
+        const Transform xr = pose(xs.apply(local), normalized(qs * turn));
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "seed %llu case %d %s r %.3g h %.3g half %.3g",
+                      static_cast<unsigned long long>(seed), i, is_cone ? "cone" : "cylinder", r, hh, half);
+        check(solid, xs, rod, xr, -(room + radius), r + hh, 1e-10, buf, j);
+    }
+    std::printf(
+        "tangent segments in cylinders and cones: %d signed distances, error over the size median %.3g, max %.3g\n",
+        j.cases, j.median(), j.worst());
+    EXPECT_EQ(j.failures, 0) << "seed " << seed;
+    EXPECT_EQ(j.overlapping, j.cases) << "seed " << seed;
+}
+
 // Cylinders and cones of subnormal size (5e-324 .. 1e-310) against a unit ball: centred on them,
 // centred a subnormal offset away, and beside them. Two findings of fuzz_queries: the slant's
 // normal from hypot(2h, r) of subnormals, which has a few bits, made signed_distance's axis
