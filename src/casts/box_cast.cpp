@@ -299,6 +299,12 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     // A start within the band of the rounded box, or in it, is the GJK cast's (touching at the start).
     const double gap = closed_form::safe_length(s - closed_form::box_nearest(h, s)) - rho;
     if (!(gap > band)) return out;
+    // A radius below the rounding of the entry point (eps of the start's and the motion's
+    // coordinates) leaves no edge or corner to round: the entry is on the grown box's face, as for a
+    // plain box; the edges' capsules would be tested against an entry rounded farther from them
+    // than their radius (a ball of radius 1e-150 cast into a box through one of its edges missed
+    // it; found by fuzzing).
+    const bool plain = rho <= 0x1p-50 * (reach + motion);
     // The slab test against the box grown by rho on every axis, which holds the rounded box.
     const Vec3 e{h.x + rho, h.y + rho, h.z + rho};
     double enter = 0, leave = 1;
@@ -326,7 +332,7 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     Vec3 p = s + enter * r;
     int outside = 0;
     for (int k = 0; k < 3; ++k) outside += std::fabs(p[k]) > h[k];
-    if (axis >= 0 && (rho == 0 || outside <= 1)) {
+    if (axis >= 0 && (plain || outside <= 1)) {
         // On a face of the grown box within the box's extent across it: the rounded box's face.
         if (rho == 0 && !((leave - enter) * motion > band)) return out;  // a graze of a plain box
         // The slab's face the ray enters through is the one it moves toward (r's sign, exact);
@@ -341,7 +347,7 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
         out.point = p;
         return out;
     }
-    if (rho == 0) return out;  // a plain box entered at once on two slabs: left to GJK
+    if (plain) return out;  // a plain box entered at once on two slabs: left to GJK
     // Near an edge or a corner: the capsules of the edges at the entry's corner, or in an edge's
     // region (two coordinates past the box) that edge's alone (Ericson §5.5.7). Inside the grown
     // box every coordinate lies within rho past the box, so a ray from an edge's region meets its

@@ -29,7 +29,8 @@ struct BoxCast {
 BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double tolerance);
 
 // A ray s + lambda r (the box's frame) against the box of half extents h grown by a ball of
-// radius rho >= 0 (a plain box when 0): for a point or a ball cast against a box, rounded or not.
+// radius rho >= 0 (a plain box when 0, or below the rounding of the entry): for a point or a ball
+// cast against a box, rounded or not.
 // The ray enters the box grown by rho on every axis (a slab test); an entry with at most one
 // coordinate past the box is on a face and exact; otherwise the capsule of the edge whose region
 // it is in decides, or in a corner's region the earliest of the three at the corner (cylinders as

@@ -614,6 +614,80 @@ TEST(BoxCast, RoundedCornersEdgesAndCapsAgainstTheClosedForm) {
     }
 }
 
+// Balls of radius 0 to 1e-14 of the box's size cast at the box's centre along lines through one of
+// its edges or corners: the entry lies on two or three slabs at once, and the edges' capsules are
+// thinner than the entry point's rounding. A fuzz_queries finding: a ball of radius 1e-150 (and
+// one of 1e-100) moving from (6.22 6.24 6.24) box frame toward the centre of a box 0.09 wide was
+// reported missing it, the edge's capsule tested against an entry rounded 1e-16 off the edge,
+// while radii 0 and 1e-20 hit. Truth: the plain box's slab entry in long double (the rounded box is
+// entered at most the radius earlier). Turned (the finding's exact axis permutation among them),
+// 1e4 sizes from the origin, both argument orders, the ray cast onto the rounded box too.
+TEST(BoxCast, TinyBallsThroughEdgesAndCornersHit) {
+    const uint64_t seed = 53021;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double radii[] = {0, 1e-300, 1e-150, 1e-100, 1e-30, 1e-20, 1e-14};
+    int cases = 0, failures = 0, multi_slab = 0;
+    for (int i = 0; i < 120; ++i) {
+        const double scale = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);
+        const Vec3 h = i == 0 ? Vec3{0.093471274891279474, 0.093471274891279474, 0.093471274891279474}
+                              : scale * Vec3{0.3 + u(rng), 0.3 + u(rng), 0.3 + u(rng)};
+        // The start: beyond the corner (+h) along (a, b, b), b >= a, so that y and z are entered
+        // together (an edge along x), or along (1 1 1) scaled by h (the corner itself).
+        const bool corner = i % 3 == 2;
+        const double k = 10 + 60 * u(rng);
+        const Vec3 s = i == 0   ? Vec3{6.2188448920424193, 6.2431372549019599, 6.2431372549019599}
+                       : corner ? k * h
+                                : k * Vec3{h.y * (0.8 + 0.19 * u(rng)), h.y, h.z};
+        const Quat q = i == 0 ? Quat{0.5, 0.5, 0.5, 0.5} : i % 2 ? random_quat(rng) : Quat{0.5, 0.5, 0.5, 0.5};
+        const double far = i % 4 == 3 ? 1e4 * scale : 0;
+        const Transform pa = make_transform(far * Vec3{1, -1, 0.5}, q);
+        const Transform pb = make_transform(pa.apply(s), Quat{0, 0, 0, -1});
+        const Vec3 tb = pa.translation - pb.translation;  // to the box's centre
+        // The plain box's entry in the box's frame from the placed start, in long double.
+        const Vec3 sl = pa.to_local_direction(pb.translation - pa.translation), rl = pa.to_local_direction(tb);
+        long double enter = 0;
+        int on = 0;
+        for (int m = 0; m < 3; ++m) {
+            const long double t =
+                (std::fabs(static_cast<long double>(sl[m])) - h[m]) / std::fabs(static_cast<long double>(rl[m]));
+            enter = std::max(enter, t);
+        }
+        for (int m = 0; m < 3; ++m)
+            on += std::fabs((std::fabs(static_cast<long double>(sl[m])) - h[m]) /
+                                std::fabs(static_cast<long double>(rl[m])) -
+                            enter) <= 1e-12L;
+        multi_slab += on >= 2;
+        const double speed = length(tb);
+        const BoxShape box(h);
+        for (const double rho : radii) {
+            const SphereShape ball(std::max(rho * scale, 1e-300));
+            const PointShape point;
+            const Shape& b_shape = rho > 0 ? static_cast<const Shape&>(ball) : point;
+            const double radius = rho > 0 ? std::max(rho * scale, 1e-300) : 0;
+            const MinkowskiSumShape rounded(box, ball);
+            // Slack: the tolerance, the radius's head start and the start's rounding, over the motion.
+            const double slack = kTol + (radius + 1e-13 * (scale + far)) / speed;
+            for (int order = 0; order < 3; ++order) {
+                const CastResult r = order == 0   ? shape_cast(box, pa, {}, b_shape, pb, tb, kTol, kMaxIt)
+                                     : order == 1 ? shape_cast(b_shape, pb, tb, box, pa, {}, kTol, kMaxIt)
+                                                  : ray_cast(rounded, pa, pb.translation, tb, kTol, kMaxIt);
+                ++cases;
+                const double err = r.toi - static_cast<double>(enter);
+                if ((!r.hit || !(std::fabs(err) <= slack)) && ++failures <= 10)
+                    ADD_FAILURE() << "radius " << radius << " case " << i << (corner ? " corner" : " edge") << " order "
+                                  << order << ": hit " << r.hit << " toi " << r.toi << ", entry "
+                                  << static_cast<double>(enter) << "; seed " << seed;
+            }
+        }
+    }
+    std::printf(
+        "tiny balls through edges and corners: %d casts, %d failures, %d of 120 entries on two or three slabs\n", cases,
+        failures, multi_slab);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(multi_slab, 60) << "seed " << seed;
+}
+
 // Starts far beyond the box (1e2 to 1e18 of its size), aimed at it within about its size, so that
 // the entry point s + lambda r carries rounding up to far above the box itself: every hit still
 // enters through a face the ray moves toward or a capsule it approaches (the normal opposes r),
