@@ -1089,15 +1089,15 @@ TEST(Penetration, ShortCapsulesInsideNeedlesKeepTheirPointsTheDepthApart) {
 // of `check` (both orders; points on the support planes, B moved by the depth touching A). Flat
 // boxes, half lengths from 0 to 1.5 times the box, scales 1e-3 .. 1e3, 1e4 of the size from the
 // origin.
-TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
-    const uint64_t seed = 53011;
+// `count` pairs at the given scales (each of the pair's lengths, offsets included); counts into j,
+// `across` (pairs across the face's normal) and `closed_form` (predicted by the centre's form).
+void segments_centred_in_boxes(uint64_t seed, const std::vector<double>& scales, int count, Judge& j, int& across,
+                               int& closed_form) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    Judge j;
-    int across = 0, closed_form = 0;
     const double lengths[] = {0, 1e-12, 1e-6, 1e-3, 0.3, 1.5};
-    for (int i = 0; i < 480; ++i) {
-        const double scale = std::pow(10.0, 3 * static_cast<int>(rng() % 3) - 3);
+    for (int i = 0; i < count; ++i) {
+        const double scale = scales[rng() % scales.size()];
         const Vec3 h = scale * Vec3{0.3 + u(rng), 0.3 + u(rng), (i % 4 == 0 ? 1e-3 : 1.0) * (0.3 + u(rng))};
         const BoxShape box(h);
         // The centre anywhere inside, the nearest face's axis k.
@@ -1167,6 +1167,13 @@ TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
                       by_centre ? " (the centre's closed form)" : "");
         check(box, xs, rod, xr, truth, scale, far > 0 ? 1e-9 : 1e-10, buf, j);
     }
+}
+
+TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
+    const uint64_t seed = 53011;
+    Judge j;
+    int across = 0, closed_form = 0;
+    segments_centred_in_boxes(seed, {1e-3, 1, 1e3}, 480, j, across, closed_form);
     std::printf(
         "segments centred in boxes: %d signed distances (%d overlapping), %d pairs across the nearest face's "
         "normal, %d by the centre's closed form; error over the size median %.3g, max %.3g\n",
@@ -1184,14 +1191,15 @@ TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
 // ends outside). The centre's closed form takes them all. Truth: the room by a scan of the support
 // mapping (depth_by_meridian_scan), plus the radius; the invariants of `check` (gjk_distance after
 // the move) confirm the axis. Needles, flat and plain solids, both orders.
-TEST(Penetration, TangentSegmentsInCylindersAndConesTakeTheCentresRoom) {
-    const uint64_t seed = 53012;
+// `count` pairs, every length times one of `scales`.
+void tangent_segments_in_cylinders_and_cones(uint64_t seed, const std::vector<double>& scales, int count, Judge& j) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
-    Judge j;
-    for (int i = 0; i < 240; ++i) {
+    for (int i = 0; i < count; ++i) {
         const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);  // needles .. flat
-        const double r = (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect), hh = (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
+        const double s = scales.size() > 1 ? scales[rng() % scales.size()] : scales[0];
+        const double r = s * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect);
+        const double hh = s * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
         const bool is_cone = i % 2 == 1;
         const CylinderShape cyl(r, hh);
         const ConeShape cone(r, hh);
@@ -1206,7 +1214,7 @@ TEST(Penetration, TangentSegmentsInCylindersAndConesTakeTheCentresRoom) {
         const SegmentShape segment(half);
         const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
         const Quat qs = random_quat(rng);
-        const Transform xs = pose(random_unit(rng), qs);
+        const Transform xs = pose(s * random_unit(rng), qs);
         // The rod's z along the tangent (0 0 1) x radial: a quarter turn about the radial direction.
         const Quat turn = axis_angle(radial, -0.5 * std::acos(-1.0));
         const Transform xr = pose(xs.apply(local), normalized(qs * turn));
@@ -1215,11 +1223,38 @@ TEST(Penetration, TangentSegmentsInCylindersAndConesTakeTheCentresRoom) {
                       static_cast<unsigned long long>(seed), i, is_cone ? "cone" : "cylinder", r, hh, half);
         check(solid, xs, rod, xr, -(room + radius), r + hh, 1e-10, buf, j);
     }
+}
+
+TEST(Penetration, TangentSegmentsInCylindersAndConesTakeTheCentresRoom) {
+    const uint64_t seed = 53012;
+    Judge j;
+    tangent_segments_in_cylinders_and_cones(seed, {1.0}, 240, j);
     std::printf(
         "tangent segments in cylinders and cones: %d signed distances, error over the size median %.3g, max %.3g\n",
         j.cases, j.median(), j.worst());
     EXPECT_EQ(j.failures, 0) << "seed " << seed;
     EXPECT_EQ(j.overlapping, j.cases) << "seed " << seed;
+}
+
+// The two families above at huge and tiny scales (every length, offsets included, times 1e-150 ..
+// 1e150): the centre's closed form and its bound compare the push out with the room relatively,
+// so their answers must scale with the pair, against the same truths.
+TEST(Penetration, SegmentsInSolidsAtHugeAndTinyScales) {
+    const uint64_t seed = 54011;
+    const std::vector<double> scales = {1e-150, 1e-50, 1e50, 1e150};
+    Judge boxes, round;
+    int across = 0, closed_form = 0;
+    segments_centred_in_boxes(seed, scales, 320, boxes, across, closed_form);
+    tangent_segments_in_cylinders_and_cones(seed + 1, scales, 160, round);
+    std::printf(
+        "segments in solids at 1e-150 .. 1e150: boxes %d signed distances (%d by the centre's closed form), error "
+        "over the size median %.3g, max %.3g; cylinders and cones %d, median %.3g, max %.3g\n",
+        boxes.cases, closed_form, boxes.median(), boxes.worst(), round.cases, round.median(), round.worst());
+    EXPECT_EQ(boxes.failures + round.failures, 0) << "seed " << seed;
+    EXPECT_EQ(boxes.overlapping, boxes.cases) << "seed " << seed;
+    EXPECT_EQ(round.overlapping, round.cases) << "seed " << seed;
+    EXPECT_GT(closed_form, 80) << "seed " << seed;
+    EXPECT_LT(closed_form, 300) << "seed " << seed;
 }
 
 // Cylinders and cones of subnormal size (5e-324 .. 1e-310) against a unit ball: centred on them,
