@@ -290,27 +290,27 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // stopped up to 8e-4 of the size short). Unconverged, its answer E is a lower bound of the
         // depth, and so is the closed form's U less its error (U lies at most that above the
         // depth): the larger is kept, with U's axis and contact, at most that error short.
+        const auto adopt = [&](const CoreDepth& bound, Termination stop) {  // the calls of both count
+            const uint32_t calls = depth.iterations + bound.iterations;
+            depth = bound;
+            depth.iterations = calls;
+            depth.termination = stop;
+        };
         if (near() && !depth.flat &&
             (depth.termination == Termination::MaxIterations || depth.termination == Termination::NoProgress) &&
             coaxial.depth.depth - coaxial.error > depth.depth) {
-            const uint32_t calls = depth.iterations + coaxial.depth.iterations;
-            const Termination stop = depth.termination;
-            depth = coaxial.depth;
+            adopt(coaxial.depth, depth.termination);
             depth.depth -= coaxial.error;
             depth.point_b = depth.point_a - depth.depth * depth.n;
-            depth.iterations = calls;
-            depth.termination = stop;
         }
         // A segment inside a solid: an expansion past the segment's push out along its centre's
-        // axis by more than the tolerance (rounding on sliver faces) takes that push out instead,
-        // keeping its termination.
-        if (segment.lower > 0 && !depth.flat && !(depth.depth <= segment.upper.depth * (1 + tolerance))) {
-            const uint32_t calls = depth.iterations + segment.upper.iterations;
-            const Termination stop = depth.termination;
-            depth = segment.upper;
-            depth.iterations = calls;
-            depth.termination = stop;
-        }
+        // axis by more than the tolerance (rounding on sliver faces: its lower bound passed an
+        // upper one) takes that push out instead. The depth is then only known to lie between the
+        // centre's room and it, more than the tolerance apart (else the closed form had answered):
+        // a bound, reported as a rounding stop (NoProgress), or the guard's.
+        if (segment.lower > 0 && !depth.flat && !(depth.depth <= segment.upper.depth * (1 + tolerance)))
+            adopt(segment.upper, depth.termination == Termination::MaxIterations ? Termination::MaxIterations
+                                                                                 : Termination::NoProgress);
         depth.iterations += c.iterations;
         total = depth.depth + margin;
         if (depth.flat) {  // the cores meet: at a point of A's core (GJK's), both deepest points
