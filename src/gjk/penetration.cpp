@@ -30,13 +30,17 @@ using namespace epa_detail;
 // farther), on the flat end or along the side's normal there (the side's foot lies within the side:
 // the axial section's angles at the rim and the apex are at most right). On the axis the side's
 // nearest points form a circle, which the expansion can only approach: two coaxial shapes took its
-// 254 support calls to come within 3e-4 of the depth, and each order gave another answer.
-CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b) {
+// 254 support calls to come within 3e-4 of the depth, and each order gave another answer. The
+// point lies at `at` in its own core's frame (a segment's end): turned into the solid's frame apart
+// from the poses' offset, so that it is not rounded at the offset's size.
+CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
+                               Vec3 at = {}) {
     const bool a_is_solid = ca.core != Core::Point;
     const Shape& solid = a_is_solid ? *ca.shape : *cb.shape;
     const Transform& solid_pose = a_is_solid ? pose_a : pose_b;
     const Transform& point_pose = a_is_solid ? pose_b : pose_a;
-    const Vec3 t = solid_pose.to_local_direction(point_pose.translation - solid_pose.translation);
+    const Vec3 t = solid_pose.to_local_direction(point_pose.translation - solid_pose.translation) +
+                   solid_pose.to_local_direction(point_pose.rotation * at);
     double room;
     Vec3 out_dir{}, face = t;  // solid's frame: the way the point leaves, and where
     if (solid.kind() == ShapeKind::Box) {
@@ -91,24 +95,27 @@ CoreDepth point_in_solid_depth(const CoreOf& ca, const Transform& pose_a, const 
         d.point_b = t;
     } else {  // B, the solid, moves the other way
         d.n = -pose_a.to_local_direction(pose_b.rotation * out_dir);
+        d.point_a = at;
         d.point_b = pose_a.to_local_direction(pose_b.apply(face) - pose_a.translation);
     }
     return d;
 }
 
-// A segment core (a capsule's, a segment) and a box, cylinder or cone core, either order, the
-// segment's centre inside the solid by D0 along its exact axis n0 (point_in_solid_depth): the
-// depth D is at least D0 (every point of the segment needs at least its centre's push out along
-// any axis) and at most U = D0 + h |n0 . e| (the segment's push out along n0, h its half length, e
-// its direction). A segment across the axis or short (capsules of length 0 or 1e-12: balls) has U
-// within the tolerance of D0, so U is the depth, exact and in one call; the expansion on such a
-// ball inside a needle cone stopped on rounding with its axis up to 1.5e-3 rad off the normal, or
-// converged on sliver faces to a depth 1.5e-6 of itself too deep. Otherwise U bounds the
-// expansion's answer, should it pass U by more than the tolerance. `upper` holds U with n0 and the
-// deepest points: the segment's end that needs the most push and the solid's point U from it along
-// the axis; within the tolerance of a tie (the segment across n0), the centre's and the solid's
-// point U from it (the end may lie outside the solid: a capsule along a cylinder's side, through
-// its end). `lower` is D0, or 0 when the centre is not inside or the pair is not such a pair.
+// A segment core (a capsule's, a segment) and a box, cylinder or cone core, either order. A point
+// p of the segment inside the solid by D(p) along its exact axis n (point_in_solid_depth) bounds
+// the segment's depth D: at least D(p) (p needs that push out along any axis), at most
+// U(p) = D(p) + max over the segment's x of (x - p) . n (A's segment; (p - x) . n for B's), the
+// segment's push out along n. Of the centre, U = D0 + h |n . e| (h the half length, e the
+// direction): a segment across its axis or short (capsules of length 0 or 1e-12: balls) has U
+// within the tolerance of D0; the expansion on such a ball inside a needle cone stopped on
+// rounding with its axis up to 1.5e-3 rad off the normal, or converged on sliver faces 1.5e-6 of
+// the depth too deep. Of an end, U = D(p) when the segment leaves the solid along its axis from
+// it: a capsule's tip poking into a box or through a cylinder's side. The centre and both ends are
+// tried; `upper` holds the least U with its axis and deepest points (the segment's point that
+// needs the most push, the tried point itself within the tolerance of a tie, and the solid's point
+// U from it along the axis), `lower` the largest D(p), 0 when no point tried is inside or the pair
+// is not such a pair. Within the tolerance of each other, U is the depth, in three calls;
+// otherwise U bounds the expansion's answer, should it pass U by more than the tolerance.
 struct SegmentInSolid {
     CoreDepth upper;
     double lower = 0;
@@ -118,27 +125,39 @@ SegmentInSolid segment_in_solid(const CoreOf& ca, const Transform& pose_a, const
     SegmentInSolid s;
     const bool a_segment = ca.core == Core::Segment && solid_core(cb);
     if (!a_segment && !(solid_core(ca) && cb.core == Core::Segment)) return s;
-    CoreOf centre_a = ca, centre_b = cb;
-    (a_segment ? centre_a : centre_b).core = Core::Point;  // the segment's centre: its local origin
-    const CoreDepth d = point_in_solid_depth(centre_a, pose_a, centre_b, pose_b);
-    if (!(d.depth > 0)) return s;
-    // The segment's half extent in A's frame; along n0 it adds to the push out. B leaves A along n0:
-    // A's end farthest along it needs the most push, or B's least far.
+    CoreOf point_a = ca, point_b = cb;
+    (a_segment ? point_a : point_b).core = Core::Point;  // a point of the segment: its pose's origin
     const double half = segment_half_length(*(a_segment ? ca : cb).shape);
+    // The segment's half extent in A's frame. B leaves A along n: A's point farthest along it needs
+    // the most push, or B's least far; `sign` turns B's into A's case.
     const Vec3 e = half * (a_segment ? Vec3{0, 0, 1} : pose_a.to_local_direction(pose_b.rotation * Vec3{0, 0, 1}));
-    const double along = dot(d.n, e);
-    s.upper = d;
-    s.upper.depth = d.depth + std::fabs(along);
-    if (!std::isfinite(s.upper.depth)) return s;
-    const Vec3 end = std::fabs(along) <= tolerance * s.upper.depth ? Vec3{} : (along < 0 ? -1.0 * e : e);
-    if (a_segment) {
-        s.upper.point_a = d.point_a + end;
-        s.upper.point_b = s.upper.point_a - s.upper.depth * d.n;
-    } else {
-        s.upper.point_b = d.point_b - end;
-        s.upper.point_a = s.upper.point_b + s.upper.depth * d.n;
+    const double sign = a_segment ? 1 : -1;
+    s.upper.depth = INFINITY;
+    uint32_t calls = 0;
+    for (int t = 0; t <= (half > 0 ? 2 : 0); ++t) {
+        const double at = t == 0 ? 0.0 : (t == 1 ? 1.0 : -1.0);  // the point at `at` e
+        const CoreDepth d = point_in_solid_depth(point_a, pose_a, point_b, pose_b, Vec3{0, 0, at * half});
+        ++calls;
+        if (!(d.depth > 0)) continue;
+        s.lower = std::fmax(s.lower, d.depth);
+        // The segment's ends, at u e for u = -1, 1, push out (u - at) e . n past this point (B's: minus that).
+        const double along = sign * dot(d.n, e), push_plus = (1 - at) * along, push_minus = (-1 - at) * along;
+        const double extra = std::fmax(0.0, std::fmax(push_plus, push_minus));
+        const double u = d.depth + extra;
+        if (!(u < s.upper.depth) || !std::isfinite(u)) continue;
+        const Vec3 shift = extra <= tolerance * u ? Vec3{} : (push_plus >= push_minus ? 1 - at : -1 - at) * e;
+        s.upper = d;
+        s.upper.depth = u;
+        if (a_segment) {
+            s.upper.point_a = d.point_a + shift;
+            s.upper.point_b = s.upper.point_a - u * d.n;
+        } else {
+            s.upper.point_b = d.point_b + shift;
+            s.upper.point_a = s.upper.point_b + u * d.n;
+        }
     }
-    s.lower = d.depth;
+    if (!(s.lower > 0) || !std::isfinite(s.upper.depth)) return SegmentInSolid{};
+    s.upper.iterations = calls;
     return s;
 }
 
