@@ -1216,30 +1216,46 @@ TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
     EXPECT_LT(closed_form, 400) << "seed " << seed;
 }
 
+// A cylinder's or a cone's radius and half height, of aspect 1e-2 (needles), 1 or 1e2 (flat),
+// times one of `scales` (s), and a point inside it off its axis: at height within 0.9 of the half
+// height, 0.05 .. 0.95 of the rim's radius there from the axis along `radial`.
+struct InsideRound {
+    double s, r, hh;
+    Vec3 radial, point;
+};
+InsideRound draw_inside_round(std::mt19937_64& rng, const std::vector<double>& scales, bool is_cone) {
+    std::uniform_real_distribution<double> u(0, 1);
+    InsideRound in;
+    const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);
+    in.s = scales.size() > 1 ? scales[rng() % scales.size()] : scales[0];
+    in.r = in.s * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect);
+    in.hh = in.s * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
+    const double a = 2 * std::acos(-1.0) * u(rng), z = in.hh * (1.8 * u(rng) - 0.9);
+    in.radial = Vec3{std::cos(a), std::sin(a), 0};
+    const double rim = is_cone ? in.r * (in.hh - z) / (2 * in.hh) : in.r;
+    in.point = z * Vec3{0, 0, 1} + (0.05 + 0.9 * u(rng)) * rim * in.radial;
+    return in;
+}
+
 // Capsules and segments centred inside cylinders and cones, along the tangent of the circle about
 // the axis through their centre: every boundary normal in the centre's axial half-plane (the end's,
 // the side's, a cone's slant) is across them, so B moved by the centre's room along its normal
 // touches A, and the depth is that room, whatever the length (up to 3 times the solid's radius, the
 // ends outside). The centre's closed form takes them all. Truth: the room by a scan of the support
 // mapping (depth_by_meridian_scan), plus the radius; the invariants of `check` (gjk_distance after
-// the move) confirm the axis. Needles, flat and plain solids, both orders.
-// `count` pairs, every length times one of `scales`.
+// the move) confirm the axis. Needles, flat and plain solids, both orders; `count` pairs, every
+// length times one of `scales`.
 void tangent_segments_in_cylinders_and_cones(uint64_t seed, const std::vector<double>& scales, int count, Judge& j) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     for (int i = 0; i < count; ++i) {
-        const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);  // needles .. flat
-        const double s = scales.size() > 1 ? scales[rng() % scales.size()] : scales[0];
-        const double r = s * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect);
-        const double hh = s * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
+        const InsideRound in = draw_inside_round(rng, scales, i % 2 == 1);
+        const double r = in.r, hh = in.hh, s = in.s;
         const bool is_cone = i % 2 == 1;
         const CylinderShape cyl(r, hh);
         const ConeShape cone(r, hh);
         const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
-        const double a = 2 * std::acos(-1.0) * u(rng), z = hh * (1.8 * u(rng) - 0.9);
-        const Vec3 radial{std::cos(a), std::sin(a), 0};
-        const double rim = is_cone ? r * (hh - z) / (2 * hh) : r;
-        const Vec3 local = z * Vec3{0, 0, 1} + (0.05 + 0.9 * u(rng)) * rim * radial;
+        const Vec3 radial = in.radial, local = in.point;
         const double room = depth_by_meridian_scan(solid, local, radial);
         const double half = 3 * r * u(rng), radius = i % 3 == 0 ? 0.0 : 0.2 * r;
         const CapsuleShape capsule(radius, half);
@@ -1325,18 +1341,13 @@ void segment_tips_in_cylinders_and_cones(uint64_t seed, const std::vector<double
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     for (int i = 0; i < count; ++i) {
-        const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);  // needles .. flat
-        const double s = scales.size() > 1 ? scales[rng() % scales.size()] : scales[0];
-        const double r = s * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect);
-        const double hh = s * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
+        const InsideRound in = draw_inside_round(rng, scales, i % 2 == 1);
+        const double r = in.r, hh = in.hh, s = in.s;
         const bool is_cone = i % 2 == 1;
         const CylinderShape cyl(r, hh);
         const ConeShape cone(r, hh);
         const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
-        const double a = 2 * std::acos(-1.0) * u(rng), z = hh * (1.8 * u(rng) - 0.9);
-        const Vec3 radial{std::cos(a), std::sin(a), 0};
-        const double rim = is_cone ? r * (hh - z) / (2 * hh) : r;
-        const Vec3 tip = z * Vec3{0, 0, 1} + (0.05 + 0.9 * u(rng)) * rim * radial;
+        const Vec3 radial = in.radial, tip = in.point;
         Vec3 m;
         const double room = depth_by_meridian_scan(solid, tip, radial, &m);
         const int kind = i % 3;
