@@ -322,11 +322,11 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
             depth.depth -= coaxial.error;
             depth.point_b = depth.point_a - depth.depth * depth.n;
         }
-        // A segment inside a solid: an expansion past the segment's push out along its centre's
-        // axis by more than the tolerance (rounding on sliver faces: its lower bound passed an
-        // upper one) takes that push out instead. The depth is then only known to lie between the
-        // centre's room and it, more than the tolerance apart (else the closed form had answered):
-        // a bound, reported as a rounding stop (NoProgress), or the guard's.
+        // A segment inside a solid: an expansion past the least push out of the segment's points
+        // tried (segment_in_solid) by more than the tolerance (rounding on sliver faces: its lower
+        // bound passed an upper one) takes that push out instead. The depth is then only known to
+        // lie between the points' largest room and it, more than the tolerance apart (else the
+        // closed form had answered): a bound, reported as a rounding stop (NoProgress), or the guard's.
         if (segment.lower > 0 && !depth.flat && !(depth.depth <= segment.upper.depth * (1 + tolerance)))
             adopt(segment.upper, depth.termination == Termination::MaxIterations ? Termination::MaxIterations
                                                                                  : Termination::NoProgress);
