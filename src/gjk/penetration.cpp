@@ -244,7 +244,10 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
     const auto near = [&] { return coaxial.kind == gjk_detail::CoaxialAnswer::Kind::Near; };
     double total;
     const bool point_solid = point_and_solid(ca, cb);
-    const SegmentInSolid segment = segment_in_solid(ca, pose_a, cb, pose_b, tolerance);
+    // Cores apart with an axis that shows their gap hold no point of one inside the other: the
+    // segment's points are not tried (the radii's overlap is the answer, below).
+    const SegmentInSolid segment =
+        axis_shows_gap ? SegmentInSolid{} : segment_in_solid(ca, pose_a, cb, pose_b, tolerance);
     // The room decides inside too, should it round otherwise than the cores' closed-form distance
     // (a GJK loop from a point 9e-8 inside a cone 3e-7 wide once took the cores as apart).
     if (point_solid) depth = point_in_solid_depth(ca, pose_a, cb, pose_b);
