@@ -424,33 +424,18 @@ struct Overlap {
     int cores_overlap = 0;  // capsule/box: pairs whose segment itself enters the box
 };
 
-// The depth of capsule A in box B, in long double in B's frame: the capsule is its segment grown
-// by its radius r. A segment entering the box is pushed out along one of the sum's face normals,
-// the box's axes and the segment's direction across each (the least overlap over them, the
-// segment's depth, plus r); a segment outside is r less its distance to the box, which an end
-// (against the box, by clamping) or one of the box's 12 edges attains.
+// The depth of capsule A in box B, in long double: the capsule is its segment grown by its radius r.
+// A segment entering the box has the depth the sum's facets give (gjk_test::box_segment_depth),
+// plus r; a segment outside has r less its distance to the box, which an end (against the box, by
+// clamping in B's frame) or one of the box's 12 edges attains.
 double capsule_box_depth(const Spec& capsule, const Spec& box) {
     using oracle::P3;
     using oracle::Real;
-    const auto end = [&](double z) {
-        const Vec3 p = box.pose.apply_inverse(capsule.pose.apply({0, 0, z}));
-        return P3{p.x, p.y, p.z};
-    };
-    const P3 p = end(-capsule.b), q = end(capsule.b), e = q - p;
-    const Real half[3] = {box.a, box.b, box.c};
-    const P3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    Real core_depth = INFINITY;
-    const auto try_axis = [&](P3 n) {
-        const Real len = oracle::norm(n);
-        if (!(len > 1e-12L)) return;  // the segment along a box axis: that face normal serves
-        n = (1 / len) * n;
-        const Real reach = half[0] * std::fabs(n.x) + half[1] * std::fabs(n.y) + half[2] * std::fabs(n.z);
-        const Real lo = std::min(oracle::dot(p, n), oracle::dot(q, n)),
-                   hi = std::max(oracle::dot(p, n), oracle::dot(q, n));
-        core_depth = std::min(core_depth, std::min(hi + reach, reach - lo));
-    };
-    for (const P3& axis : axes) try_axis(axis), try_axis(oracle::cross(e, axis));
-    if (core_depth > 0) return double(core_depth) + capsule.a;
+    const Vec3 half{box.a, box.b, box.c};
+    const double core = gjk_test::box_segment_depth(half, box.pose, capsule.b, capsule.pose);
+    if (core > 0) return core + capsule.a;
+    const auto end = [&](double z) { return gjk_test::to_p3(box.pose.apply_inverse(capsule.pose.apply({0, 0, z}))); };
+    const P3 p = end(-capsule.b), q = end(capsule.b);
     const auto to_box_sq = [&](P3 x) {
         const Real c[3] = {x.x, x.y, x.z};
         Real sum = 0;

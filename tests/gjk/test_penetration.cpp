@@ -1100,6 +1100,23 @@ TEST(Penetration, ShortCapsulesInsideNeedlesKeepTheirPointsTheDepthApart) {
     EXPECT_GT(short_cases, 160) << "seed " << seed;
 }
 
+// A capsule of radius `radius` and half length `half` about its z axis, or its segment when the
+// radius is 0 (`shape()`).
+struct Rod {
+    CapsuleShape capsule;
+    SegmentShape segment;
+    Rod(double radius, double half) : capsule(radius, half), segment(half) {}
+    const Shape& shape() const { return capsule.radius > 0 ? static_cast<const Shape&>(capsule) : segment; }
+};
+
+// The turn taking z onto the unit e (about z x e).
+Quat turn_z_onto(Vec3 e) {
+    const Vec3 axis = cross(Vec3{0, 0, 1}, e);
+    const double sine = length(axis);
+    return sine > 0 ? axis_angle((1 / sine) * axis, std::atan2(sine, e.z))
+                    : (e.z > 0 ? Quat{0, 0, 0, 1} : Quat{1, 0, 0, 0});
+}
+
 // Capsules and segments whose core's centre lies inside a box, against the exact depth of the
 // segment's core in the box: A - B is the sum of the segment and the box, whose facets are the box's
 // faces and the parallelograms of the segment with a box edge, so the depth is the least support
@@ -1110,43 +1127,6 @@ TEST(Penetration, ShortCapsulesInsideNeedlesKeepTheirPointsTheDepthApart) {
 // of `check` (both orders; points on the support planes, B moved by the depth touching A). Flat
 // boxes, half lengths from 0 to 1.5 times the box, scales 1e-3 .. 1e3, 1e4 of the size from the
 // origin.
-// The turn taking z onto the unit e (about z x e).
-Quat turn_z_onto(Vec3 e) {
-    const Vec3 axis = cross(Vec3{0, 0, 1}, e);
-    const double sine = length(axis);
-    return sine > 0 ? axis_angle((1 / sine) * axis, std::atan2(sine, e.z))
-                    : (e.z > 0 ? Quat{0, 0, 0, 1} : Quat{1, 0, 0, 0});
-}
-
-// The depth of a segment of half length `half` (its pose's z) in a box of half extents h, from the
-// poses as placed, in long double: A - B is the sum of the segment and the box, whose facets are the
-// box's faces and the parallelograms of the segment with each box edge, so the depth is the least
-// support value of A - B over those normals, less the offset's (the pair must overlap).
-double box_segment_depth(Vec3 h, const Transform& xs, double half, const Transform& xr) {
-    using R = long double;
-    const Vec3 cr = xs.to_local_direction(xr.translation - xs.translation);
-    const Vec3 er = xs.to_local_direction(xr.rotation * Vec3{0, 0, 1});
-    const auto push = [&](R nx, R ny, R nz) {  // the support value of A - B along n, less |c . n|
-        const R len = std::sqrt(nx * nx + ny * ny + nz * nz);
-        if (!(len > 0)) return R(INFINITY);
-        nx /= len, ny /= len, nz /= len;
-        const R boxes = h.x * std::fabs(nx) + h.y * std::fabs(ny) + h.z * std::fabs(nz);
-        const R seg = half * std::fabs(er.x * nx + er.y * ny + er.z * nz);
-        return boxes + seg - std::fabs(cr.x * nx + cr.y * ny + cr.z * nz);
-    };
-    R depth = INFINITY;
-    for (int m = 0; m < 3; ++m) {
-        R n[3] = {0, 0, 0};
-        n[m] = 1;
-        depth = std::min(depth, push(n[0], n[1], n[2]));
-        // e x the box's edge along m.
-        R x[3] = {er.x, er.y, er.z}, g[3];
-        g[0] = x[1] * n[2] - x[2] * n[1], g[1] = x[2] * n[0] - x[0] * n[2], g[2] = x[0] * n[1] - x[1] * n[0];
-        if (half > 0) depth = std::min(depth, push(g[0], g[1], g[2]));
-    }
-    return double(depth);
-}
-
 // `count` pairs at the given scales (each of the pair's lengths, offsets included); counts into j,
 // `across` (pairs across the face's normal) and `closed_form` (predicted by the centre's form).
 void segments_centred_in_boxes(uint64_t seed, const std::vector<double>& scales, int count, Judge& j, int& across,
@@ -1180,9 +1160,8 @@ void segments_centred_in_boxes(uint64_t seed, const std::vector<double>& scales,
         }
         const double half = std::max(h.x, std::max(h.y, h.z)) * lengths[rng() % 6];
         const double radius = i % 3 == 0 ? 0.0 : 0.1 * scale;
-        const CapsuleShape capsule(radius, half);
-        const SegmentShape segment(half);
-        const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
+        const Rod rods(radius, half);
+        const Shape& rod = rods.shape();
         const double far = i % 5 == 0 ? 1e4 * scale : 0;
         const Quat qs = random_quat(rng);
         const Transform xs = pose(far * Vec3{1, -1, 0.5} + scale * random_unit(rng), qs);
@@ -1216,26 +1195,30 @@ TEST(Penetration, SegmentsCentredInBoxesAgainstTheSumsFacets) {
     EXPECT_LT(closed_form, 400) << "seed " << seed;
 }
 
-// A cylinder's or a cone's radius and half height, of aspect 1e-2 (needles), 1 or 1e2 (flat),
-// times one of `scales` (s), and a point inside it off its axis: at height within 0.9 of the half
-// height, 0.05 .. 0.95 of the rim's radius there from the axis along `radial`.
+// A cylinder or a cone (`solid()`) of radius r and half height hh, of aspect 1e-2 (needles), 1 or
+// 1e2 (flat), times one of `scales` (s), and a point inside it off its axis: at height within 0.9
+// of the half height, 0.05 .. 0.95 of the rim's radius there from the axis along `radial`.
 struct InsideRound {
+    bool is_cone;
     double s, r, hh;
     Vec3 radial, point;
+    CylinderShape cyl{0, 0};
+    ConeShape cone{0, 0};
+    InsideRound(std::mt19937_64& rng, const std::vector<double>& scales, bool cone_wanted) : is_cone(cone_wanted) {
+        std::uniform_real_distribution<double> u(0, 1);
+        const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);
+        s = scales.size() > 1 ? scales[rng() % scales.size()] : scales[0];
+        r = s * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect);
+        hh = s * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
+        const double a = 2 * std::acos(-1.0) * u(rng), z = hh * (1.8 * u(rng) - 0.9);
+        radial = Vec3{std::cos(a), std::sin(a), 0};
+        const double rim = is_cone ? r * (hh - z) / (2 * hh) : r;
+        point = z * Vec3{0, 0, 1} + (0.05 + 0.9 * u(rng)) * rim * radial;
+        cyl.radius = cone.radius = r;
+        cyl.half_height = cone.half_height = hh;
+    }
+    const Shape& solid() const { return is_cone ? static_cast<const Shape&>(cone) : cyl; }
 };
-InsideRound draw_inside_round(std::mt19937_64& rng, const std::vector<double>& scales, bool is_cone) {
-    std::uniform_real_distribution<double> u(0, 1);
-    InsideRound in;
-    const double aspect = std::pow(10.0, 2 * static_cast<int>(rng() % 3) - 2);
-    in.s = scales.size() > 1 ? scales[rng() % scales.size()] : scales[0];
-    in.r = in.s * (0.3 + u(rng)) * (aspect > 1 ? 1 : aspect);
-    in.hh = in.s * (0.3 + u(rng)) / (aspect < 1 ? 1 : aspect);
-    const double a = 2 * std::acos(-1.0) * u(rng), z = in.hh * (1.8 * u(rng) - 0.9);
-    in.radial = Vec3{std::cos(a), std::sin(a), 0};
-    const double rim = is_cone ? in.r * (in.hh - z) / (2 * in.hh) : in.r;
-    in.point = z * Vec3{0, 0, 1} + (0.05 + 0.9 * u(rng)) * rim * in.radial;
-    return in;
-}
 
 // Capsules and segments centred inside cylinders and cones, along the tangent of the circle about
 // the axis through their centre: every boundary normal in the centre's axial half-plane (the end's,
@@ -1249,18 +1232,15 @@ void tangent_segments_in_cylinders_and_cones(uint64_t seed, const std::vector<do
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     for (int i = 0; i < count; ++i) {
-        const InsideRound in = draw_inside_round(rng, scales, i % 2 == 1);
+        const InsideRound in(rng, scales, i % 2 == 1);
         const double r = in.r, hh = in.hh, s = in.s;
-        const bool is_cone = i % 2 == 1;
-        const CylinderShape cyl(r, hh);
-        const ConeShape cone(r, hh);
-        const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
+        const bool is_cone = in.is_cone;
+        const Shape& solid = in.solid();
         const Vec3 radial = in.radial, local = in.point;
         const double room = depth_by_meridian_scan(solid, local, radial);
         const double half = 3 * r * u(rng), radius = i % 3 == 0 ? 0.0 : 0.2 * r;
-        const CapsuleShape capsule(radius, half);
-        const SegmentShape segment(half);
-        const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
+        const Rod rods(radius, half);
+        const Shape& rod = rods.shape();
         const Quat qs = random_quat(rng);
         const Transform xs = pose(s * random_unit(rng), qs);
         // The rod's z along the tangent (0 0 1) x radial: a quarter turn about the radial direction.
@@ -1321,9 +1301,8 @@ void segment_tips_in_boxes(uint64_t seed, const std::vector<double>& scales, int
         leaving += kind != 3;
         const double half = std::max(h.x, std::max(h.y, h.z)) * lengths[rng() % 4];
         const double radius = i % 3 == 0 ? 0.0 : 0.1 * scale;
-        const CapsuleShape capsule(radius, half);
-        const SegmentShape segment(half);
-        const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
+        const Rod rods(radius, half);
+        const Shape& rod = rods.shape();
         const double end = rng() % 2 ? 1.0 : -1.0;  // the tip: the rod's end at end * half along its z
         const double far = i % 5 == 0 ? 1e4 * scale : 0;
         const Quat qs = random_quat(rng);
@@ -1341,12 +1320,10 @@ void segment_tips_in_cylinders_and_cones(uint64_t seed, const std::vector<double
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     for (int i = 0; i < count; ++i) {
-        const InsideRound in = draw_inside_round(rng, scales, i % 2 == 1);
+        const InsideRound in(rng, scales, i % 2 == 1);
         const double r = in.r, hh = in.hh, s = in.s;
-        const bool is_cone = i % 2 == 1;
-        const CylinderShape cyl(r, hh);
-        const ConeShape cone(r, hh);
-        const Shape& solid = is_cone ? static_cast<const Shape&>(cone) : cyl;
+        const bool is_cone = in.is_cone;
+        const Shape& solid = in.solid();
         const Vec3 radial = in.radial, tip = in.point;
         Vec3 m;
         const double room = depth_by_meridian_scan(solid, tip, radial, &m);
@@ -1359,9 +1336,8 @@ void segment_tips_in_cylinders_and_cones(uint64_t seed, const std::vector<double
             e = normalized_or(e + 1e-3 * m, m);
         }
         const double half = (r + hh) * (kind == 0 ? 1e-6 : 1.5 * u(rng)), radius = (i / 3) % 2 == 0 ? 0.0 : 0.2 * r;
-        const CapsuleShape capsule(radius, half);
-        const SegmentShape segment(half);
-        const Shape& rod = radius > 0 ? static_cast<const Shape&>(capsule) : segment;
+        const Rod rods(radius, half);
+        const Shape& rod = rods.shape();
         const double end = rng() % 2 ? 1.0 : -1.0;
         const Quat qs = random_quat(rng);
         const Transform xs = pose(s * random_unit(rng), qs);

@@ -2,6 +2,7 @@
 // Shared helpers of the GJK tests: shape ownership, random poses and polytopes, oracle bodies.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "math/transform.hpp"
 #include "oracle/polytope_oracle.hpp"
 #include "shapes/shape.hpp"
 
@@ -86,6 +88,36 @@ inline double radius_of(const Verts& v) {
     double r = 0;
     for (const auto& p : v) r = std::fmax(r, std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]));
     return r;
+}
+
+// The depth of a segment of half length `half` (its pose's z) in a box of half extents h, from the
+// poses as placed, in long double: A - B is the sum of the segment and the box, whose facets are the
+// box's faces and the parallelograms of the segment with each box edge, so the depth is the least
+// support value of A - B over those normals, less the offset's. Pairs apart get a number below 0 that
+// is not their distance (the largest separation over those normals).
+inline double box_segment_depth(kairos::Vec3 h, const kairos::Transform& xs, double half, const kairos::Transform& xr) {
+    using R = long double;
+    const kairos::Vec3 cr = xs.to_local_direction(xr.translation - xs.translation);
+    const kairos::Vec3 er = xs.to_local_direction(xr.rotation * kairos::Vec3{0, 0, 1});
+    const auto push = [&](R nx, R ny, R nz) {  // the support value of A - B along n, less |c . n|
+        const R len = std::sqrt(nx * nx + ny * ny + nz * nz);
+        if (!(len > 0)) return R(INFINITY);
+        nx /= len, ny /= len, nz /= len;
+        const R boxes = h.x * std::fabs(nx) + h.y * std::fabs(ny) + h.z * std::fabs(nz);
+        const R seg = half * std::fabs(er.x * nx + er.y * ny + er.z * nz);
+        return boxes + seg - std::fabs(cr.x * nx + cr.y * ny + cr.z * nz);
+    };
+    R depth = INFINITY;
+    for (int m = 0; m < 3; ++m) {
+        R n[3] = {0, 0, 0};
+        n[m] = 1;
+        depth = std::min(depth, push(n[0], n[1], n[2]));
+        // e x the box's edge along m.
+        R x[3] = {er.x, er.y, er.z}, g[3];
+        g[0] = x[1] * n[2] - x[2] * n[1], g[1] = x[2] * n[0] - x[0] * n[2], g[2] = x[0] * n[1] - x[1] * n[0];
+        if (half > 0) depth = std::min(depth, push(g[0], g[1], g[2]));
+    }
+    return double(depth);
 }
 
 }  // namespace gjk_test
