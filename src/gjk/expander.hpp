@@ -39,25 +39,10 @@ public:
     // polytope, scale and bounds are taken over, so none of its calls is made again.
     template <int M, int R>
     Expander(const Expander<Pair, M, R>& from, uint32_t budget)
-        : pair_(from.pair_),
-          hint_(from.hint_),
-          budget_(budget),
-          seed_(from.seed_),
-          calls_(from.calls_),
-          size_(from.size_),
-          flat_(from.flat_),
-          interior_(from.interior_),
-          upper_n_(from.upper_n_),
-          upper_x_(from.upper_x_),
-          upper_(from.upper_),
-          cap_(from.cap_),
-          epoch_(from.epoch_),
-          listing_(from.listing_),
-          n_near_(from.n_near_),
-          n_written_(from.n_written_),
-          n_free_(from.n_free_),
-          nv_(from.nv_),
-          nf_(from.nf_) {
+        : pair_(from.pair_), hint_(from.hint_), budget_(budget), seed_(from.seed_), calls_(from.calls_),
+          size_(from.size_), flat_(from.flat_), interior_(from.interior_), upper_n_(from.upper_n_),
+          upper_x_(from.upper_x_), upper_(from.upper_), epoch_(from.epoch_), listing_(from.listing_),
+          n_near_(from.n_near_), n_written_(from.n_written_), n_free_(from.n_free_), nv_(from.nv_), nf_(from.nf_) {
         static_assert(M <= MaxV && (kRanks || !Expander<Pair, M, R>::kRanks));
         for (int i = 0; i < nv_; ++i) verts_[i] = from.verts_[i];
         for (int i = 0; i < nf_; ++i) {
@@ -73,20 +58,12 @@ public:
     // Whether the near faces were ranked (RankFrom reached).
     bool ranked() const { return ranking_.on(); }
 
-    // A support value of C known before the run (the caller's scale, A's frame): `bound.depth`
-    // along the unit bound.n, reached at bound.point_a - bound.point_b. It is taken as the smallest
-    // support value seen, so the expansion stops once a face comes within the tolerance of it, and
-    // it caps the answer (finish). `bound` must outlive run(); a larger expansion taken over from
-    // this one keeps both.
-    void bound_from_above(const CoreDepth* bound) { outer_ = bound; }
-
     CoreDepth run(double tolerance) {
         CoreDepth out;
         if (nv_ == 0) {  // else taken over from a smaller expansion
             out.termination = build_tetrahedron(out);
             if (out.termination != Termination::None) return finish(out);
         }
-        if (outer_ != nullptr) take_outer_bound();
         double& upper = upper_;
         for (;;) {
             // The least key among the faces; resolving raises a key, so after a resolve the face
@@ -520,21 +497,6 @@ private:
         if constexpr (kRanks) ranking_.put(s, key_);
     }
 
-    // The caller's bound (bound_from_above) at the working scale (a power of two: exact), when
-    // below every support value seen.
-    void take_outer_bound() {
-        const double sc = pair_.scale, u = sc * outer_->depth;
-        if (std::isfinite(u)) cap_ = u;
-        if (u < upper_ && std::isfinite(u)) {
-            upper_ = u;
-            upper_n_ = outer_->n;
-            upper_x_.a = sc * outer_->point_a;
-            upper_x_.b = sc * outer_->point_b;
-            upper_x_.w = upper_x_.a - upper_x_.b;
-        }
-        outer_ = nullptr;
-    }
-
     // The smallest support value seen and its axis: an upper bound of the depth (B moved by it
     // along upper_n_ no longer overlaps), exact along that axis.
     [[gnu::noinline]] CoreDepth finish_upper(Termination t, CoreDepth& out) {
@@ -562,15 +524,6 @@ private:
         // a point 1.9e-6 inside a ball of radius 2.7e-3 at 16 support calls (fuzzing).
         const bool seen = dot(upper_n_, upper_n_) > 0;
         if (f.d < 0 && seen && t != Termination::MaxIterations) return finish_upper(t, out);
-        // A face deeper than the caller's bound by more than the tolerance: only rounding puts a
-        // lower bound above an upper one (sliver faces of a segment in a solid passed it by
-        // 1.6e-12 to 2.2e-9 of the depth). The depth then lies between the polytope's other bounds
-        // and the smallest support value seen, which has its axis: a bound, reported as a rounding
-        // stop, or the guard's. (Not applied to the expansion's own support values: answers
-        // within rounding of them far from the origin, where that rounding exceeds floor(), would
-        // change.)
-        if (f.d > 0 && !(f.d <= cap_ * (1 + tolerance)))
-            return finish_upper(t == Termination::MaxIterations ? t : Termination::NoProgress, out);
         double l[3];
         weights(f, l);
         out.point_a = combine(f, l, &Vertex::a);
@@ -621,8 +574,6 @@ private:
     Vec3 upper_n_;
     Vertex upper_x_;
     double upper_ = INFINITY;  // the smallest support value of C along a unit direction (upper_n_)
-    const CoreDepth* outer_ = nullptr;  // bound_from_above's, until run() takes it
-    double cap_ = INFINITY;             // its depth at the working scale, once taken
     Slots<Vertex, kMaxV> verts_;
     // Face i, its ranking distance (faces_[i].d) and its plane, kept apart so that the scans
     // over every face read them contiguously.
