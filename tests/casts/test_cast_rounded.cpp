@@ -148,3 +148,77 @@ TEST(CastRounded, NormalAndPointAreTheCoresClosestPointsAtToi) {
     // Most random casts hit with the cores well apart: the set exercises the rule at every tolerance.
     EXPECT_GT(compared, casts / 4);
 }
+
+// Cores that touch at toi: a segment (A, at rest) crossed by a capsule's segment (B) of radius
+// 1e-300 .. 1e-4 of the size, the two lines meeting inside both (the radius too small to move the
+// first contact off the segments). Below about 1e-13 of the size the cores' closest points are a
+// rounding apart and have no direction between them (a fuzz_queries finding: a segment 4747 long
+// got a normal 87 degrees off, and the shapes overlapped by 20.9 across it at toi). Truth: the
+// crossing's normal, the cross product of the directions (opposing the motion), and the time the
+// lines meet less the radius's share; the shapes' overlap along the reported normal at toi must
+// stay within the tolerance of the size. Sizes 1 .. 1e4, both argument orders. The code before
+// the fix: normals up to 2.3 rad off, overlaps up to 3.7 times the size.
+TEST(CastRounded, CrossingCoresWithTinyRadiiKeepTheCrossingsNormal) {
+    const uint64_t seed = 55041;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double radii[] = {1e-300, 1e-100, 1e-20, 1e-14, 1e-12, 1e-6, 1e-4};
+    int casts = 0, failures = 0;
+    double worst_angle = 0, worst_overlap = 0;
+    for (int i = 0; i < 1400; ++i) {
+        const double size = std::pow(10.0, 4 * u(rng));
+        const double ha = size * (0.5 + u(rng)), hb = size * (0.1 + u(rng));
+        const double r = radii[i % 7] * size;
+        const Quat qa = random_quat(rng), qb = random_quat(rng);
+        const Vec3 ea = to_matrix(qa) * Vec3{0, 0, 1}, eb = to_matrix(qb) * Vec3{0, 0, 1};
+        const Vec3 c = cross(ea, eb);
+        if (!(length(c) > 0.05)) continue;
+        Vec3 n = normalized_or(c, c);
+        // The crossing point X on A at u_a, B's point at it u_b along B; B moves by tb and meets A
+        // at s0 (its centre then X - u_b eb), approaching along -n.
+        const Vec3 ca = size * random_unit(rng);
+        const Vec3 x = ca + ha * (1.6 * u(rng) - 0.8) * ea;
+        const double ub = hb * (1.6 * u(rng) - 0.8), s0 = 0.2 + 0.6 * u(rng);
+        Vec3 tb = size * random_unit(rng);
+        if (dot(tb, n) > 0) n = -1.0 * n;  // the normal from A toward B opposes B's motion
+        if (!(std::fabs(dot(tb, n)) > 0.2 * length(tb))) continue;
+        const Vec3 cb = x - ub * eb - s0 * tb;
+        const SegmentShape segment(ha);
+        const CapsuleShape capsule(r, hb);
+        const Transform pa = make_transform(ca, qa), pb = make_transform(cb, qb);
+        const double tol = 1e-10;
+        for (const bool swapped : {false, true}) {
+            ++casts;
+            const CastResult res = swapped ? shape_cast(capsule, pb, tb, segment, pa, {}, tol, 256)
+                                           : shape_cast(segment, pa, {}, capsule, pb, tb, tol, 256);
+            const Vec3 truth = swapped ? -1.0 * n : n;  // from the first shape toward the second
+            // B meets A when its segment's line is r from A's along n: s0 less r / |n . tb|.
+            const double toi = s0 - r / std::fabs(dot(n, tb));
+            const Vec3 m = res.normal;
+            const double angle = std::atan2(length(cross(m, truth)), dot(m, truth));
+            // The overlap along the reported normal at toi: each shape's extent along it.
+            const Vec3 at_b = cb + res.toi * tb;
+            const auto reach = [&](Vec3 centre, Vec3 e, double h, double radius, Vec3 d) {
+                return dot(d, centre) + h * std::fabs(dot(d, e)) + radius * length(d);
+            };
+            const Vec3 first = swapped ? at_b : ca, second = swapped ? ca : at_b;
+            const Vec3 e1 = swapped ? eb : ea, e2 = swapped ? ea : eb;
+            const double h1 = swapped ? hb : ha, h2 = swapped ? ha : hb, r1 = swapped ? r : 0, r2 = swapped ? 0 : r;
+            const double overlap = (reach(first, e1, h1, r1, m) + reach(second, e2, h2, r2, -1.0 * m)) / size;
+            worst_angle = std::max(worst_angle, angle);
+            worst_overlap = std::max(worst_overlap, overlap);
+            const bool ok = res.hit && std::fabs(res.toi - toi) <= 1e-9 && angle <= 1e-6 && overlap <= 1e-9;
+            if (!ok && ++failures <= 10)
+                ADD_FAILURE() << "seed " << seed << " case " << i << (swapped ? " swapped" : "") << ": radius "
+                              << r / size << " of the size " << size << ", hit " << res.hit << " toi " << res.toi
+                              << " (truth " << toi << "), normal " << angle << " rad off, overlap " << overlap
+                              << " of the size";
+        }
+    }
+    std::printf(
+        "crossing cores with tiny radii: %d casts, worst normal angle %.3g rad, worst overlap %.3g of the "
+        "size\n",
+        casts, worst_angle, worst_overlap);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(casts, 1000) << "seed " << seed;
+}
