@@ -148,6 +148,12 @@ LocalCast go_on_past_rounding_stops(LocalCast l, uint32_t max_iterations, bool p
     return l;
 }
 
+// How far apart the planes normal to n (world frame, from A toward B) through the shapes' extreme
+// points lie: positive when n separates them, the overlap along n when negative.
+double separation(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Vec3 n) {
+    return dot(n, support(b, pose_b, -n)) - dot(n, support(a, pose_a, n));
+}
+
 // A closed form's answer (box_cast.hpp; Hit or Miss, not Declined) as a cast result, one
 // "iteration": normal and point (the contact at toi) in the frame that `pose` maps to the world.
 CastResult closed_result(const cast_detail::BoxCast& bc, const Transform& pose, Vec3 normal, Vec3 point) {
@@ -360,9 +366,9 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         // crossing a capsule's of radius 7e-300 got one 87 degrees off their cross product, and
         // the shapes overlapped by 20.9 across it at toi (fuzz_queries). The closed form's
         // direction is kept when it separates the shapes at toi at least as well as the cast's.
-        const auto separation = [&](Vec3 n) { return dot(n, support(b, at_b, -n)) - dot(n, support(a, at_a, n)); };
         if (!cd.overlap && dot(cd.unit, cd.unit) > 0.5 && is_finite(mid) &&
-            dot(nw, translation_b - translation_a) < 0 && separation(nw) >= separation(out.normal)) {
+            dot(nw, translation_b - translation_a) < 0 &&
+            separation(a, at_a, b, at_b, nw) >= separation(a, at_a, b, at_b, out.normal)) {
             out.normal = nw;
             out.point = at_a.apply(mid);
         }
@@ -384,13 +390,10 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         // plane separates well while the simplex's point may lie off the shapes after the stop
         // (0.28 outside a unit ball beside a capsule stretched to 1.3e5; fuzzing), and the
         // distance's point is the one to keep then.
-        auto separation = [&](Vec3 n) {
-            return dot(n, support(b, at_b, -n)) - dot(n, support(a, at_a, n));
-        };
         const Vec3 judged =
             l.v_plane_cuts ? pose_a.rotation * contact_normal(l, margin, r, fallback, false) : out.normal;
         if (!d.intersecting && dot(d.axis, translation_b - translation_a) < 0 &&
-            separation(d.axis) > separation(judged)) {
+            separation(a, at_a, b, at_b, d.axis) > separation(a, at_a, b, at_b, judged)) {
             out.normal = d.axis;
             out.point = 0.5 * (d.point_a + d.point_b);
         }
