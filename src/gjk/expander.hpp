@@ -39,10 +39,25 @@ public:
     // polytope, scale and bounds are taken over, so none of its calls is made again.
     template <int M, int R>
     Expander(const Expander<Pair, M, R>& from, uint32_t budget)
-        : pair_(from.pair_), hint_(from.hint_), budget_(budget), seed_(from.seed_), calls_(from.calls_),
-          size_(from.size_), flat_(from.flat_), interior_(from.interior_), upper_n_(from.upper_n_),
-          upper_x_(from.upper_x_), upper_(from.upper_), epoch_(from.epoch_), listing_(from.listing_),
-          n_near_(from.n_near_), n_written_(from.n_written_), n_free_(from.n_free_), nv_(from.nv_), nf_(from.nf_) {
+        : pair_(from.pair_),
+          hint_(from.hint_),
+          budget_(budget),
+          seed_(from.seed_),
+          calls_(from.calls_),
+          size_(from.size_),
+          flat_(from.flat_),
+          interior_(from.interior_),
+          upper_n_(from.upper_n_),
+          upper_x_(from.upper_x_),
+          upper_(from.upper_),
+          cap_(from.cap_),
+          epoch_(from.epoch_),
+          listing_(from.listing_),
+          n_near_(from.n_near_),
+          n_written_(from.n_written_),
+          n_free_(from.n_free_),
+          nv_(from.nv_),
+          nf_(from.nf_) {
         static_assert(M <= MaxV && (kRanks || !Expander<Pair, M, R>::kRanks));
         for (int i = 0; i < nv_; ++i) verts_[i] = from.verts_[i];
         for (int i = 0; i < nf_; ++i) {
@@ -58,12 +73,20 @@ public:
     // Whether the near faces were ranked (RankFrom reached).
     bool ranked() const { return ranking_.on(); }
 
+    // A support value of C known before the run (the caller's scale, A's frame): `bound.depth`
+    // along the unit bound.n, reached at bound.point_a - bound.point_b. It is taken as the smallest
+    // support value seen, so the expansion stops once a face comes within the tolerance of it, and
+    // it caps the answer (finish). `bound` must outlive run(); a larger expansion taken over from
+    // this one keeps both.
+    void bound_from_above(const CoreDepth* bound) { outer_ = bound; }
+
     CoreDepth run(double tolerance) {
         CoreDepth out;
         if (nv_ == 0) {  // else taken over from a smaller expansion
             out.termination = build_tetrahedron(out);
             if (out.termination != Termination::None) return finish(out);
         }
+        if (outer_ != nullptr) take_outer_bound();
         double& upper = upper_;
         for (;;) {
             // The least key among the faces; resolving raises a key, so after a resolve the face
@@ -228,163 +251,10 @@ private:
         return l[0] * (verts_[f.v[0]].*part) + l[1] * (verts_[f.v[1]].*part) + l[2] * (verts_[f.v[2]].*part);
     }
 
-    // A tetrahedron of support points, or the depth 0 of a flat C (a point, a segment or a
-    // polygon: returns NearContact with out.n set). None when the tetrahedron is built.
-    //
-    // GJK's tetrahedron when it serves (from_seed); else C's extreme points along the six axes,
-    // which also set the working scale: the largest of them is brought near 1 (a power of two,
-    // exact). One support point alone can lie far inside C's extent (a triangle's corner 1e-300
-    // from the origin scaled the rest of a triangle 4 wide to overflow; found by fuzzing).
-    [[gnu::noinline]] Termination build_tetrahedron(CoreDepth& out) {
-        out.n = normalized_or(hint_, {1, 0, 0});
-        if (seed_ != nullptr && seed_->valid && from_seed()) return Termination::None;
-        Vertex ext[6];
-        double big = 0;
-        for (int i = 0; i < 6; ++i) {
-            Vec3 d{};
-            (i < 2 ? d.x : (i < 4 ? d.y : d.z)) = i % 2 ? -1 : 1;
-            ext[i].w = pair_(d, ext[i].a, ext[i].b);
-            ++calls_;
-            big = std::fmax(big, std::fmax(max_abs(ext[i].a), max_abs(ext[i].b)));
-        }
-        const double sc = pair_scale({big, 0, 0}, {});
-        if (sc != 1) {
-            double unused = 0;
-            Vec3 a{}, b{};
-            adopt_scale(pair_, sc, a, b, unused);
-            for (Vertex& x : ext) x.a = sc * x.a, x.b = sc * x.b, x.w = x.a - x.b;
-        }
-        for (const Vertex& x : ext) size_ = std::fmax(size_, max_abs(x.w));
-        // The two extremes farthest apart.
-        int i0 = 0, i1 = 1;
-        for (int i = 0; i < 6; ++i)
-            for (int j = i + 1; j < 6; ++j)
-                if (length(ext[j].w - ext[i].w) > length(ext[i1].w - ext[i0].w)) i0 = i, i1 = j;
-        const Vec3 e = ext[i1].w - ext[i0].w;
-        if (!(length(e) > floor())) {  // C is a point: touching
-            flat_ = 0;
-            return Termination::NearContact;
-        }
-        add_vertex(ext[i0]);
-        add_vertex(ext[i1]);
-        const Vec3 o = ext[i0].w;
-        // The extreme farthest from their line, else C's supports across it.
-        const Vec3 eu = normalized_or(e, {1, 0, 0});
-        auto across = [&](const Vertex& x) {
-            const Vec3 off = x.w - o;
-            return length(off - dot(off, eu) * eu);
-        };
-        Vertex far = ext[0];
-        for (const Vertex& x : ext)
-            if (across(x) > across(far)) far = x;
-        const Vec3 p = normalized_or(cross(eu, std::fabs(eu.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}), {0, 0, 1});
-        if (!(across(far) > thin())) {
-            const Vec3 q = cross(eu, p);
-            for (const Vec3& d : {p, -p, q, -q}) {
-                Vertex x;
-                support(d, x);
-                if (across(x) > across(far)) far = x;
-            }
-        }
-        if (!(across(far) > thin())) {  // C is a segment: the normal across it nearest the hint
-            // Orthogonalised twice (one pass leaves rounding along eu), and only a hint well off
-            // the segment's line counts: a hint along it leaves rounding noise, whose direction is
-            // anything (a ball centred on a capsule's segment got an axis along the capsule).
-            Vec3 off = hint_ - dot(hint_, eu) * eu;
-            off = off - dot(off, eu) * eu;
-            out.n = length(off) > 1e-6 * length(hint_) ? normalized_or(off, p) : p;
-            flat_ = 1;
-            return Termination::NearContact;
-        }
-        add_vertex(far);
-        // The extreme farthest from their plane, else C's supports along its normal.
-        const Vec3 m = normalized_or(cross(verts_[1].w - o, verts_[2].w - o), {0, 0, 1});
-        Vertex apex = ext[0];
-        for (const Vertex& x : ext)
-            if (std::fabs(dot(m, x.w - o)) > std::fabs(dot(m, apex.w - o))) apex = x;
-        if (!(std::fabs(dot(m, apex.w - o)) > thin())) {
-            for (const Vec3& d : {m, -m}) {
-                Vertex x;
-                support(d, x);
-                if (std::fabs(dot(m, x.w - o)) > std::fabs(dot(m, apex.w - o))) apex = x;
-            }
-        }
-        if (!(std::fabs(dot(m, apex.w - o)) > thin())) {  // C is flat: its plane's normal, toward the hint
-            out.n = dot(m, hint_) < 0 ? -m : m;
-            flat_ = 2;
-            return Termination::NearContact;
-        }
-        add_vertex(apex);
-        if (!close_tetrahedron(0)) {  // a sliver: taken as flat, across the first three points' plane
-            out.n = dot(m, hint_) < 0 ? -m : m;
-            flat_ = 2;
-            return Termination::NoProgress;
-        }
-        return Termination::None;
-    }
-
-    // GJK's tetrahedron as the start, as van den Bergen's and Bullet's expansions do: it saves
-    // the six axis supports. Taken only at a scale that keeps or shrinks its points (an enlarging
-    // one needs the axes' bound on C, see first_scale) and when each corner stands clear of the
-    // opposite face by 1e-6 of its size; else C's axis extremes start (false, nothing kept).
-    [[gnu::noinline]] bool from_seed() {
-        double big = 0;
-        for (int i = 0; i < 4; ++i) big = std::fmax(big, std::fmax(max_abs(seed_->a[i]), max_abs(seed_->b[i])));
-        const double sc = pair_scale({big, 0, 0}, {});
-        if (!(sc <= 1)) return false;
-        for (int i = 0; i < 4; ++i) {
-            Vertex x;
-            x.a = sc * seed_->a[i], x.b = sc * seed_->b[i], x.w = x.a - x.b;
-            size_ = std::fmax(size_, max_abs(x.w));
-            add_vertex(x);
-        }
-        if (!(size_ > 0) || !close_tetrahedron(1e-6 * size_)) {
-            nv_ = nf_ = 0;
-            size_ = 0;
-            return false;
-        }
-        if (sc != 1) {
-            double unused = 0;
-            Vec3 a{}, b{};
-            adopt_scale(pair_, sc, a, b, unused);
-        }
-        return true;
-    }
-
-    // The four faces of the tetrahedron verts_[0..3], each wound so that the fourth point lies
-    // behind it (by more than min_height when > 0), and their neighbours. False for a sliver
-    // (a face without a normal, or faces wound inconsistently by rounding on a tetrahedron too
-    // thin to orient).
-    [[gnu::noinline]] bool close_tetrahedron(double min_height) {
-        const int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
-        for (const auto& t : tri) {
-            Plane p;
-            int b = t[1], c = t[2];
-            bool ok = make_plane(t[0], b, c, p);
-            if (ok && dot(p.n, verts_[t[3]].w) > p.off) {
-                b = t[2], c = t[1];
-                ok = make_plane(t[0], b, c, p);
-            }
-            if (ok && min_height > 0) ok = p.off - dot(p.n, verts_[t[3]].w) > min_height;
-            if (!ok) return false;
-            put(nf_++, t[0], b, c, p);
-        }
-        // Each edge's neighbour: the face holding the reverse edge.
-        for (int i = 0; i < 4; ++i)
-            for (int k = 0; k < 3; ++k) {
-                const int a = faces_[i].v[k], b = faces_[i].v[(k + 1) % 3];
-                int across = -1, back = -1;
-                for (int j = 0; j < 4 && across < 0; ++j) {
-                    const int e = j != i ? edge_index(faces_[j], b, a) : -1;
-                    if (e >= 0) across = j, back = e;
-                }
-                if (across < 0) return false;
-                faces_[i].adj[k] = int16_t(across);
-                faces_[i].back[k] = uint8_t(back);
-            }
-        interior_ = 0.25 * (verts_[0].w + verts_[1].w + verts_[2].w + verts_[3].w);
-        return true;
-    }
+    // The start (gjk/expander_start.hpp): a tetrahedron of support points, or the depth 0 of a flat C.
+    [[gnu::noinline]] Termination build_tetrahedron(CoreDepth& out);
+    [[gnu::noinline]] bool from_seed();
+    [[gnu::noinline]] bool close_tetrahedron(double min_height);
 
     // Adds x: removes the faces that see it and closes the hole with faces from the horizon to x.
     // Nothing changes (false) when rounding makes the hole other than a single cycle of edges,
@@ -497,6 +367,21 @@ private:
         if constexpr (kRanks) ranking_.put(s, key_);
     }
 
+    // The caller's bound (bound_from_above) at the working scale (a power of two: exact), when
+    // below every support value seen.
+    void take_outer_bound() {
+        const double sc = pair_.scale, u = sc * outer_->depth;
+        if (std::isfinite(u)) cap_ = u;
+        if (u < upper_ && std::isfinite(u)) {
+            upper_ = u;
+            upper_n_ = outer_->n;
+            upper_x_.a = sc * outer_->point_a;
+            upper_x_.b = sc * outer_->point_b;
+            upper_x_.w = upper_x_.a - upper_x_.b;
+        }
+        outer_ = nullptr;
+    }
+
     // The smallest support value seen and its axis: an upper bound of the depth (B moved by it
     // along upper_n_ no longer overlaps), exact along that axis.
     [[gnu::noinline]] CoreDepth finish_upper(Termination t, CoreDepth& out) {
@@ -524,6 +409,15 @@ private:
         // a point 1.9e-6 inside a ball of radius 2.7e-3 at 16 support calls (fuzzing).
         const bool seen = dot(upper_n_, upper_n_) > 0;
         if (f.d < 0 && seen && t != Termination::MaxIterations) return finish_upper(t, out);
+        // A face deeper than the caller's bound by more than the tolerance: only rounding puts a
+        // lower bound above an upper one (sliver faces of a segment in a solid passed it by
+        // 1.6e-12 to 2.2e-9 of the depth). The depth then lies between the polytope's other bounds
+        // and the smallest support value seen, which has its axis: a bound, reported as a rounding
+        // stop, or the guard's. (Not applied to the expansion's own support values: answers
+        // within rounding of them far from the origin, where that rounding exceeds floor(), would
+        // change.)
+        if (f.d > 0 && !(f.d <= cap_ * (1 + tolerance)))
+            return finish_upper(t == Termination::MaxIterations ? t : Termination::NoProgress, out);
         double l[3];
         weights(f, l);
         out.point_a = combine(f, l, &Vertex::a);
@@ -574,6 +468,8 @@ private:
     Vec3 upper_n_;
     Vertex upper_x_;
     double upper_ = INFINITY;  // the smallest support value of C along a unit direction (upper_n_)
+    const CoreDepth* outer_ = nullptr;  // bound_from_above's, until run() takes it
+    double cap_ = INFINITY;             // its depth at the working scale, once taken
     Slots<Vertex, kMaxV> verts_;
     // Face i, its ranking distance (faces_[i].d) and its plane, kept apart so that the scans
     // over every face read them contiguously.
@@ -596,3 +492,5 @@ private:
 
 }  // namespace epa_detail
 }  // namespace kairos
+
+#include "gjk/expander_start.hpp"  // the out-of-class definitions of the start

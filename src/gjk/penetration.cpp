@@ -288,6 +288,8 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         depth = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double) {
             using P = std::decay_t<decltype(pair)>;
             Expander<P> expander(pair, c.center_offset, budget, &held);
+            // A segment in a solid: the least push out of its points tried bounds the depth.
+            if (segment.lower > 0) expander.bound_from_above(&segment.upper);
             CoreDepth d = expander.run(tolerance);
             if constexpr (!(exact_support<decltype(P::sa)> && exact_support<decltype(P::sb)>)) {
                 // A deep overlap on a cylinder's side can use up the 128 steps: support points
@@ -312,27 +314,18 @@ DistanceResult signed_distance(const Shape& a, const Transform& pose_a, const Sh
         // stopped up to 8e-4 of the size short). Unconverged, its answer E is a lower bound of the
         // depth, and so is the closed form's U less its error (U lies at most that above the
         // depth): the larger is kept, with U's axis and contact, at most that error short.
-        const auto adopt = [&](const CoreDepth& bound, Termination stop) {  // the calls of both count
-            const uint32_t calls = depth.iterations + bound.iterations;
-            depth = bound;
-            depth.iterations = calls;
-            depth.termination = stop;
-        };
         if (near() && !depth.flat &&
             (depth.termination == Termination::MaxIterations || depth.termination == Termination::NoProgress) &&
             coaxial.depth.depth - coaxial.error > depth.depth) {
-            adopt(coaxial.depth, depth.termination);
+            const uint32_t calls = depth.iterations + coaxial.depth.iterations;  // the calls of both count
+            const Termination stop = depth.termination;
+            depth = coaxial.depth;
+            depth.iterations = calls;
+            depth.termination = stop;
             depth.depth -= coaxial.error;
             depth.point_b = depth.point_a - depth.depth * depth.n;
         }
-        // A segment inside a solid: an expansion past the least push out of the segment's points
-        // tried (segment_in_solid) by more than the tolerance (rounding on sliver faces: its lower
-        // bound passed an upper one) takes that push out instead. The depth is then only known to
-        // lie between the points' largest room and it, more than the tolerance apart (else the
-        // closed form had answered): a bound, reported as a rounding stop (NoProgress), or the guard's.
-        if (segment.lower > 0 && !depth.flat && !(depth.depth <= segment.upper.depth * (1 + tolerance)))
-            adopt(segment.upper, depth.termination == Termination::MaxIterations ? Termination::MaxIterations
-                                                                                 : Termination::NoProgress);
+        if (segment.lower > 0) depth.iterations += segment.upper.iterations;
         depth.iterations += c.iterations;
         total = depth.depth + margin;
         if (depth.flat) {  // the cores meet: at a point of A's core (GJK's), both deepest points

@@ -489,6 +489,110 @@ bool same_depth(const epa_detail::CoreDepth& x, const epa_detail::CoreDepth& y) 
 
 }  // namespace
 
+// A bound from above given to the expansion (Expander::bound_from_above, as signed_distance gives a
+// segment's push out in a solid) is a support value seen from the start: it must never make the
+// answer deeper than itself or wrong, and a bound at the depth must let the expansion stop as
+// soon as a face comes within the tolerance of it (at 1e-2; at 1e-10 box expansions end on a
+// repeated support point at the same call either way), never later. Two overlapping boxes, scales
+// 1e-3 .. 1e3; truth: the least support value of A - B over the sum's facet normals (the boxes'
+// face normals and their edges' cross products), in A's frame, with the oracle's SAT depth beside
+// it. Bounds: that least one (tight) and the support value along a random direction (loose).
+TEST(Penetration, ABoundFromAboveStopsTheExpansionAndNeverDeepensIt) {
+    using namespace epa_detail;
+    const uint64_t seed = 55031;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, sooner = 0, failures = 0;
+    double worst = 0;
+    for (int i = 0; i < 300; ++i) {
+        const double scale = std::pow(10.0, 6 * u(rng) - 3);
+        const Vec3 ha = scale * Vec3{0.3 + u(rng), 0.3 + u(rng), 0.3 + u(rng)};
+        const Vec3 hb = scale * Vec3{0.3 + u(rng), 0.3 + u(rng), 0.3 + u(rng)};
+        const Transform xa = pose(scale * random_unit(rng), random_quat(rng));
+        const Transform xb = pose(xa.translation + 0.8 * scale * u(rng) * random_unit(rng), random_quat(rng));
+        // A's and B's corners in A's frame; C's support value along n with its witness points.
+        const Verts va = box_vertices(ha), vb_local = box_vertices(hb);
+        std::vector<Vec3> pa, pb;
+        for (const auto& v : va) pa.push_back({v[0], v[1], v[2]});
+        for (const auto& v : vb_local) pb.push_back(xa.apply_inverse(xb.apply({v[0], v[1], v[2]})));
+        const auto support_value = [&](Vec3 n) {
+            CoreDepth d;
+            d.n = n;
+            Vec3 best_a = pa[0], best_b = pb[0];
+            for (const Vec3& p : pa)
+                if (dot(n, p) > dot(n, best_a)) best_a = p;
+            for (const Vec3& p : pb)
+                if (dot(n, p) < dot(n, best_b)) best_b = p;
+            d.point_a = best_a, d.point_b = best_b, d.depth = dot(n, best_a - best_b);
+            return d;
+        };
+        const Vec3 ea[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        std::vector<Vec3> axes(std::begin(ea), std::end(ea));
+        for (const Vec3& e : ea) axes.push_back(xa.to_local_direction(xb.rotation * e));
+        for (int m = 0; m < 3; ++m)
+            for (int k = 0; k < 3; ++k) axes.push_back(cross(ea[m], axes[3 + k]));
+        CoreDepth tight;
+        tight.depth = INFINITY;
+        for (const Vec3& axis : axes) {
+            const double len = length(axis);
+            if (!(len > 1e-9)) continue;
+            for (const double sign : {1.0, -1.0}) {
+                const CoreDepth d = support_value((sign / len) * axis);
+                if (d.depth < tight.depth) tight = d;
+            }
+        }
+        const oracle::Result o =
+            oracle::distance(world_polytope(va, xa), world_polytope(vb_local, xb));  // independent of the above
+        if (!o.intersecting) continue;
+        ++cases;
+        const double size = scale;
+        if (!(std::fabs(double(o.depth) - tight.depth) <= 1e-12 * size)) {
+            ADD_FAILURE() << "seed " << seed << " case " << i << ": the facets' least support value " << tight.depth
+                          << " is not the oracle's depth " << double(o.depth);
+            continue;
+        }
+        const CoreDepth loose = support_value(random_unit(rng));
+        const Vec3 offset = xa.to_local_direction(xb.translation - xa.translation);
+        {
+            using P = PairSupport<BoxSupport, BoxSupport>;
+            const RelativeFrame frame = relative_frame(xa, xb);
+            const P pair{BoxSupport{ha}, BoxSupport{hb}, frame.r, frame.t};
+            const double tol = i % 2 ? 1e-10 : 1e-2;
+            Expander<P> plain(pair, offset, 128);
+            const CoreDepth free = plain.run(tol);
+            const CoreDepth* bounds[] = {&tight, &loose};
+            for (const CoreDepth* bound : bounds) {
+                Expander<P> bounded(pair, offset, 128);
+                bounded.bound_from_above(bound);
+                const CoreDepth d = bounded.run(tol);
+                const double err = std::fabs(d.depth - tight.depth) / size;
+                worst = std::max(worst, err);
+                const bool deeper = !(d.depth <= bound->depth * (1 + tol) + 1e-15 * size);
+                // Moving B by the depth along the axis leaves C's support value along it at 0, to
+                // the tolerance.
+                const double left = support_value(d.n).depth - d.depth;
+                if ((err > 1e-10 + tol * tight.depth / size || deeper ||
+                     !(std::fabs(left) <= tol * (d.depth + left) + 1e-12 * size) || !(length(d.n) > 0.99)) &&
+                    ++failures <= 10)
+                    ADD_FAILURE() << "seed " << seed << " case " << i << (bound == &tight ? " tight" : " loose")
+                                  << ": depth " << d.depth << " truth " << tight.depth << " bound " << bound->depth
+                                  << " support past the depth " << left;
+                if (bound == &tight && d.iterations < free.iterations) ++sooner;
+                if (d.iterations > free.iterations && ++failures <= 10)
+                    ADD_FAILURE() << "seed " << seed << " case " << i << ": " << d.iterations
+                                  << " support calls with a bound, " << free.iterations << " without";
+            }
+        }
+    }
+    std::printf(
+        "expansions bounded from above: %d box pairs, error over the size max %.3g; %d stopped sooner with "
+        "the bound at the depth\n",
+        cases, worst, sooner);
+    EXPECT_EQ(failures, 0) << "seed " << seed;
+    EXPECT_GT(cases, 150) << "seed " << seed;
+    EXPECT_GT(sooner, cases / 10) << "seed " << seed;
+}
+
 // The expansion that goes on in the larger arrays takes over the smaller one's polytope member by
 // member (Expander's converting constructor): a member left out would go unnoticed by the
 // compiler. The expansion is deterministic, so going on must give, bit for bit, what a fresh
