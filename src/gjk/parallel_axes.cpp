@@ -98,6 +98,15 @@ int nearest_part(const Edge& g, P2 p) {
     return !(along > 0) ? 0 : (!(along < g.ee) ? 2 : 1);
 }
 
+// The unit direction across A's axis toward the offset t's part across it (A's frame), or x when
+// that part is zero. From t / max|t_i| (closed_form::unit_of): dividing by its length loses the
+// digits of a part whose squares underflow (an offset of 5e-324 on x and y gave (1 1 0), and a depth
+// along it 1.41 times too deep; fuzz_queries).
+Vec3 plane_direction(Vec3 t) {
+    const Vec3 across{t.x, t.y, 0};
+    return max_abs(across) > 0 ? closed_form::unit_of(across) : Vec3{1, 0, 0};
+}
+
 }  // namespace
 
 bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const CoreOf& cb, const Transform& pose_b,
@@ -123,8 +132,8 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
     const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
     // The plane through both axes: x toward B's axis, from A's; any through A's when they coincide.
     const Vec3 ts = sc * t;
-    const double off = std::sqrt(ts.x * ts.x + ts.y * ts.y);
-    const Vec3 e = off > 0 ? Vec3{ts.x / off, ts.y / off, 0} : Vec3{1, 0, 0};
+    const Vec3 e = plane_direction(ts);
+    const double off = ts.x * e.x + ts.y * e.y;
     const double flip = axis_b.z < 0 ? -1.0 : 1.0;
     P2 a[4], b[4];
     for (int k = 0; k < na; ++k) a[k] = {sc * xa[k], sc * za[k]};
@@ -236,9 +245,9 @@ CoaxialAnswer coaxial_depth(const CoreOf& ca, const Transform& pose_a, const Cor
     const Slant sa = slant(ca), sb = slant(cb);
     const kernels::RelativeFrame f = kernels::relative_frame(pose_a, pose_b);
     const Vec3 axis_b = w.axis_b;
-    const double off = std::hypot(f.t.x, f.t.y);
     // The plane through both axes (x toward B's, from A's), any through A's when they coincide.
-    const Vec3 e = off > 0 ? Vec3{f.t.x / off, f.t.y / off, 0} : Vec3{1, 0, 0};
+    const Vec3 e = plane_direction(f.t);
+    const double off = f.t.x * e.x + f.t.y * e.y;
     double candidates[12][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     int n = 4;
     for (const Slant* c : {&sa, &sb})

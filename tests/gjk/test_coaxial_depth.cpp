@@ -523,3 +523,61 @@ TEST(CoaxialDepth, NearlyParallelOverlapsStayNearTheUntiltedDepth) {
     EXPECT_GT(cases, 600) << "seed " << seed;
     EXPECT_GT(unconverged, cases / 50) << "seed " << seed;  // the branch under test
 }
+
+// B's axis across A's by an offset whose squares underflow (5e-324 to 1e-160 on x and y, A at the
+// origin unturned, so the offset reaches the closed forms exact), overlapping and stacked apart:
+// a fuzz_queries finding, a cylinder 4.3e12 wide about a small one 5e-324 off its axis on x and
+// y, whose depth came out along (1 1 0), not unit, and 1.41 times too deep (the plane through both
+// axes was the offset over its length, which had one bit). Sizes 1 to 1e12, both orders. Truth:
+// the sections' depth and distance in long double, whose range holds the squares.
+TEST(CoaxialDepth, OffsetsWhoseSquaresUnderflowKeepAUnitAxis) {
+    const char* names[] = {"cylinder", "cone", "capsule"};
+    int cases = 0, failures = 0, overlapping = 0, stacked = 0;
+    for (const double size : {1.0, 1e3, 1e12})
+        for (const double tiny : {4.9406564584124654e-324, 1e-310, 1e-170, 1e-160})
+            for (int ka = 0; ka < 3; ++ka)
+                for (int kb = 0; kb < 3; ++kb) {
+                    if (ka == 2 && kb == 2) continue;  // two segments: a closed form of their own
+                    for (const bool apart : {false, true}) {
+                        const double ra = size, ha = 1e6 * size, rb = 0.4 * size, hb = 0.3 * size;
+                        const double pad_a = ka == 2 ? 0.5 * ra : 0.0, pad_b = kb == 2 ? 0.5 * rb : 0.0;
+                        const double dz = apart ? ha + hb + pad_a + pad_b + 0.01 * size : 0.25 * size;
+                        const Axial shape_a(ka, ra, ha, pad_a), shape_b(kb, rb, hb, pad_b);
+                        const Transform pa = make_transform({0, 0, 0}, Quat{});
+                        const Transform pb = make_transform({tiny, tiny, dz}, Quat{});
+                        const Real off = std::hypot(Real(tiny), Real(tiny));
+                        std::vector<P2> a_pts = section(ka, ra, ha), b_pts;
+                        Hull2 placed;
+                        for (const P2& p : section(kb, rb, hb)) b_pts.push_back({p.x + off, p.z + Real(dz)});
+                        for (const P2& p : a_pts)
+                            for (const P2& q : section(kb, rb, hb))
+                                for (const double mirror : {1.0, -1.0})
+                                    placed.pts.push_back({p.x - mirror * q.x - off, p.z - q.z - Real(dz)});
+                        const Real pads = Real(pad_a) + Real(pad_b);
+                        const double truth = apart ? double(polygon_distance(a_pts, b_pts) - pads)
+                                                   : -double(placed.depth() + pads);
+                        ++cases;
+                        (apart ? stacked : overlapping) += 1;
+                        for (int order = 0; order < 2; ++order) {
+                            const Shape& x = order == 0 ? shape_a.shape() : shape_b.shape();
+                            const Shape& y = order == 0 ? shape_b.shape() : shape_a.shape();
+                            const Transform& px = order == 0 ? pa : pb;
+                            const Transform& py = order == 0 ? pb : pa;
+                            const DistanceResult s = signed_distance(x, px, y, py, 1e-10, 256);
+                            const double tol = 1e-12 * (ha + ra);  // the coordinates reach ha
+                            if (!(std::fabs(s.distance - truth) <= tol) ||
+                                !(std::fabs(length(s.axis) - 1) <= 1e-12)) {
+                                if (++failures <= 10)
+                                    ADD_FAILURE() << names[ka] << "/" << names[kb] << " size " << size << " offset "
+                                                  << tiny << (apart ? " apart" : " overlapping") << " order "
+                                                  << order << ": signed distance " << s.distance << " (want "
+                                                  << truth << "), axis (" << s.axis.x << " " << s.axis.y << " "
+                                                  << s.axis.z << ")";
+                            }
+                        }
+                    }
+                }
+    std::printf("offsets whose squares underflow: %d cases (%d overlapping, %d stacked apart)\n", cases, overlapping,
+                stacked);
+    EXPECT_EQ(failures, 0);
+}
