@@ -554,8 +554,8 @@ TEST(CoaxialDepth, OffsetsWhoseSquaresUnderflowKeepAUnitAxis) {
                                 for (const double mirror : {1.0, -1.0})
                                     placed.pts.push_back({p.x - mirror * q.x - off, p.z - q.z - Real(dz)});
                         const Real pads = Real(pad_a) + Real(pad_b);
-                        const double truth = apart ? double(polygon_distance(a_pts, b_pts) - pads)
-                                                   : -double(placed.depth() + pads);
+                        const double truth =
+                            apart ? double(polygon_distance(a_pts, b_pts) - pads) : -double(placed.depth() + pads);
                         ++cases;
                         (apart ? stacked : overlapping) += 1;
                         for (int order = 0; order < 2; ++order) {
@@ -565,14 +565,13 @@ TEST(CoaxialDepth, OffsetsWhoseSquaresUnderflowKeepAUnitAxis) {
                             const Transform& py = order == 0 ? pb : pa;
                             const DistanceResult s = signed_distance(x, px, y, py, 1e-10, 256);
                             const double tol = 1e-12 * (ha + ra);  // the coordinates reach ha
-                            if (!(std::fabs(s.distance - truth) <= tol) ||
-                                !(std::fabs(length(s.axis) - 1) <= 1e-12)) {
+                            if (!(std::fabs(s.distance - truth) <= tol) || !(std::fabs(length(s.axis) - 1) <= 1e-12)) {
                                 if (++failures <= 10)
-                                    ADD_FAILURE() << names[ka] << "/" << names[kb] << " size " << size << " offset "
-                                                  << tiny << (apart ? " apart" : " overlapping") << " order "
-                                                  << order << ": signed distance " << s.distance << " (want "
-                                                  << truth << "), axis (" << s.axis.x << " " << s.axis.y << " "
-                                                  << s.axis.z << ")";
+                                    ADD_FAILURE()
+                                        << names[ka] << "/" << names[kb] << " size " << size << " offset " << tiny
+                                        << (apart ? " apart" : " overlapping") << " order " << order
+                                        << ": signed distance " << s.distance << " (want " << truth << "), axis ("
+                                        << s.axis.x << " " << s.axis.y << " " << s.axis.z << ")";
                             }
                         }
                     }
