@@ -288,6 +288,23 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
     return out;
 }
 
+namespace {
+
+// A radius below the rounding of a ray's entry into the box h grown by it (eps of the start's and
+// the motion's coordinates): no edge or corner is left to round (ray_rounded_box).
+bool radius_below_entry_rounding(Vec3 h, double rho, Vec3 s, Vec3 r) {
+    const double reach = h.x + h.y + h.z + rho + std::fabs(s.x) + std::fabs(s.y) + std::fabs(s.z);
+    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
+    return rho <= 0x1p-50 * (reach + motion);
+}
+
+}  // namespace
+
+BoxCast ray_capsule(double h, double rho, Vec3 s, Vec3 r) {
+    if (radius_below_entry_rounding({0, 0, h}, rho, s, r)) return BoxCast{};
+    return ray_rounded_box({0, 0, h}, rho, s, r);
+}
+
 BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     BoxCast out;
     const double size = h.x + h.y + h.z + rho;
@@ -304,7 +321,7 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     // plain box; the edges' capsules would be tested against an entry rounded farther from them
     // than their radius (a ball of radius 1e-150 cast into a box through one of its edges missed
     // it; found by fuzzing).
-    const bool plain = rho <= 0x1p-50 * (reach + motion);
+    const bool plain = radius_below_entry_rounding(h, rho, s, r);
     // The slab test against the box grown by rho on every axis, which holds the rounded box.
     const Vec3 e{h.x + rho, h.y + rho, h.z + rho};
     double enter = 0, leave = 1;

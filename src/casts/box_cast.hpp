@@ -40,4 +40,11 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
 // sizes or offsets beyond 1e-100 .. 1e100, anything not finite.
 BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r);
 
+// A ray s + lambda r (the segment's frame) against the capsule of the segment from (0, 0, -h) to
+// (0, 0, h) grown by rho: the box (0, 0, h) rounded by rho (ray_rounded_box, whose edges and
+// corners there are the capsule's side and caps), with its declines, and one more: a radius below
+// the rounding of the entry, where the grown box's faces stand for the capsule (ray_rounded_box's
+// plain box), is declined too: a segment has no face whose normal a contact could take.
+BoxCast ray_capsule(double h, double rho, Vec3 s, Vec3 r);
+
 }  // namespace kairos::cast_detail

@@ -154,6 +154,15 @@ double separation(const Shape& a, const Transform& pose_a, const Shape& b, const
     return dot(n, support(b, pose_b, -n)) - dot(n, support(a, pose_a, n));
 }
 
+Vec3 half_extents(const CoreOf& c) { return static_cast<const BoxShape&>(*c.shape).half_extents; }
+
+// A ray s + lambda r (the core's frame) against a box or a segment core grown by rho >= 0, in
+// closed form (box_cast.hpp), or Declined.
+cast_detail::BoxCast ray_rounded_core(const CoreOf& c, double rho, Vec3 s, Vec3 r) {
+    if (c.core == Core::Segment) return cast_detail::ray_capsule(segment_half_length(*c.shape), rho, s, r);
+    return cast_detail::ray_rounded_box(half_extents(c), rho, s, r);
+}
+
 // A closed form's answer (box_cast.hpp; Hit or Miss, not Declined) as a cast result, one
 // "iteration": normal and point (the contact at toi) in the frame that `pose` maps to the world.
 CastResult closed_result(const cast_detail::BoxCast& bc, const Transform& pose, Vec3 normal, Vec3 point) {
@@ -189,11 +198,10 @@ CastResult ray_cast(const Shape& shape, const Transform& pose, Vec3 origin, Vec3
         out.point = pose.apply(c.radius * b.dir);
         return out;
     }
-    // A box, rounded or not: in closed form (box_cast.hpp), one "iteration", unless declined
-    // (a start on or in it, a graze of a plain box).
-    if (c.core == Core::Box) {
-        const cast_detail::BoxCast bc =
-            cast_detail::ray_rounded_box(static_cast<const BoxShape&>(*c.shape).half_extents, c.radius, s, r);
+    // A box, rounded or not, or a capsule: in closed form (box_cast.hpp), one "iteration", unless
+    // declined (a start on or in it, a graze of a plain box, a segment).
+    if (c.core == Core::Box || c.core == Core::Segment) {
+        const cast_detail::BoxCast bc = ray_rounded_core(c, c.radius, s, r);
         if (bc.verdict != cast_detail::BoxCast::Verdict::Declined) return closed_result(bc, pose, bc.normal, bc.point);
     }
     auto cast_from = [&](double lambda0, Vec3 v0, uint32_t budget) {
@@ -282,23 +290,23 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
     auto closed = [&](const BoxCast& bc, Vec3 normal, Vec3 point) {
         return closed_result(bc, pose_a, normal, point + bc.toi * ta);
     };
-    auto half_extents = [](const CoreOf& c) { return static_cast<const BoxShape&>(*c.shape).half_extents; };
     // Two boxes: the separating axis test over the step.
     if (ca.core == Core::Box && cb.core == Core::Box && margin == 0) {
         const BoxCast bc = cast_detail::box_box_cast(half_extents(ca), half_extents(cb), rot, t, r, tolerance);
         if (bc.verdict != BoxCast::Verdict::Declined) return closed(bc, bc.normal, bc.point);
     }
-    // A ball (or point) and a box, rounded or not: the ball's centre as a ray against the box grown
-    // by both radii, in the box's frame; the contact point is the centre at toi less the ball's
-    // radius along the normal.
-    if (ca.core == Core::Box && cb.core == Core::Point) {
-        const BoxCast bc = cast_detail::ray_rounded_box(half_extents(ca), margin, t, r);
+    // A ball (or point) and a box, rounded or not, or a capsule: the ball's centre as a ray against
+    // the core grown by both radii, in the core's frame; the contact point is the centre at toi less
+    // the ball's radius along the normal.
+    const bool box_or_segment_a = ca.core == Core::Box || ca.core == Core::Segment;
+    const bool box_or_segment_b = cb.core == Core::Box || cb.core == Core::Segment;
+    if (box_or_segment_a && cb.core == Core::Point) {
+        const BoxCast bc = ray_rounded_core(ca, margin, t, r);
         if (bc.verdict != BoxCast::Verdict::Declined) return closed(bc, bc.normal, bc.point - cb.radius * bc.normal);
     }
-    if (ca.core == Core::Point && cb.core == Core::Box) {
+    if (ca.core == Core::Point && box_or_segment_b) {
         // A's centre seen from B (B's frame), moving by -r.
-        const BoxCast bc =
-            cast_detail::ray_rounded_box(half_extents(cb), margin, -mul_transpose(rot, t), -mul_transpose(rot, r));
+        const BoxCast bc = ray_rounded_core(cb, margin, -mul_transpose(rot, t), -mul_transpose(rot, r));
         if (bc.verdict != BoxCast::Verdict::Declined) {
             const Vec3 b_at = t + bc.toi * r;  // B's centre at toi, A's frame
             return closed(bc, -(rot * bc.normal), b_at + rot * (bc.point - ca.radius * bc.normal));
