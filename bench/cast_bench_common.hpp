@@ -17,8 +17,8 @@ namespace cast_bench {
 
 using namespace cast_test;
 
-// The sets: the first four are drawn on the chart, sphere/box and sphere/capsule (closed forms) are
-// in the CSV and the README's table. 512 casts each: few enough to stay in cache (the comparison is of the
+// The sets: the first four are drawn on the chart, sphere/box, sphere/capsule and capsule/capsule
+// (closed forms) are in the CSV and the README's table. 512 casts each: few enough to stay in cache (the comparison is of the
 // algorithms), enough for stable medians.
 constexpr int kCasts = 512;
 
@@ -32,7 +32,8 @@ inline const Scenario kScenarios[] = {{"box/box", Kind::Box, Kind::Box, 2501},
                                       {"cylinder/cone", Kind::Cylinder, Kind::Cone, 2503},
                                       {"capsule/hull32", Kind::Capsule, Kind::Hull, 2504},
                                       {"sphere/box", Kind::Sphere, Kind::Box, 2505},
-                                      {"sphere/capsule", Kind::Sphere, Kind::Capsule, 2506}};
+                                      {"sphere/capsule", Kind::Sphere, Kind::Capsule, 2506},
+                                      {"capsule/capsule", Kind::Capsule, Kind::Capsule, 2507}};
 
 struct Item {
     Solid a, b;

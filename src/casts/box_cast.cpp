@@ -21,6 +21,9 @@ namespace kairos::cast_detail {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+// Segments nearer parallel than this (the sine of their angle) are declined by capsule_pair_cast:
+// the normal of their parallelogram carries a rounding of eps / sine, 2e-12 rad here.
+constexpr double kParallelSine = 1e-4;
 
 Vec3 unit_axis(int i) { return {i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0}; }
 
@@ -298,11 +301,50 @@ bool radius_below_entry_rounding(Vec3 h, double rho, Vec3 s, Vec3 r) {
     return rho <= 0x1p-50 * (reach + motion);
 }
 
+// A ray s + lambda r entering, at lambda, the ball of radius rho about centre (a point of the core):
+// the normal from the centre toward the hit (the offset as ball_entry formed it), the point on the
+// grown surface there.
+BoxCast rounded_hit(Vec3 s, Vec3 r, double rho, double lambda, Vec3 offset, Vec3 centre) {
+    const Vec3 n = normalized_or(offset, normalized_or(s + lambda * r - centre, {0, 0, 1}));
+    BoxCast out;
+    out.verdict = BoxCast::Verdict::Hit;
+    out.toi = lambda;
+    out.normal = n;
+    out.point = centre + rho * n;
+    return out;
+}
+
 }  // namespace
 
 BoxCast ray_capsule(double h, double rho, Vec3 s, Vec3 r) {
-    if (radius_below_entry_rounding({0, 0, h}, rho, s, r)) return BoxCast{};
-    return ray_rounded_box({0, 0, h}, rho, s, r);
+    BoxCast out;
+    // The preconditions of ray_rounded_box for the box (0, 0, h) grown by rho, and its start test.
+    const double size = h + rho;
+    const double reach = size + std::fabs(s.x) + std::fabs(s.y) + std::fabs(s.z);
+    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
+    if (!(reach < 1e100) || !(motion < 1e100) || !(size > 1e-100) || !(rho >= 0)) return out;
+    const double band = 1e-9 * size;
+    if (!(motion > band) || radius_below_entry_rounding({0, 0, h}, rho, s, r)) return out;
+    const Vec3 core{0, 0, closed_form::clamp_to(s.z, h)};
+    if (!(closed_form::safe_length(s - core) - rho > band)) return out;
+    // The capsule lies in the infinite cylinder of radius rho about the z axis: a ray that never
+    // enters it misses. Entering it at |z| <= h is entering the side. Entering it past an end (or
+    // starting in it past one) is entering that end's ball first: within the cylinder, the plane
+    // z = +-h is crossed inside the ball, and the other end lies beyond the side.
+    out.verdict = BoxCast::Verdict::Miss;
+    const closed_form::BallEntry side = closed_form::ball_entry({s.x, s.y, 0}, {r.x, r.y, 0}, rho);
+    if (!(side.lambda >= 0)) return out;
+    const double z = s.z + side.lambda * r.z;
+    Vec3 centre{0, 0, z};
+    double lambda = side.lambda;
+    Vec3 offset = side.offset;
+    if (!(std::fabs(z) <= h)) {
+        centre.z = z > 0 ? h : -h;
+        const closed_form::BallEntry cap = closed_form::ball_entry(s - centre, r, rho);
+        if (!(cap.lambda >= 0)) return out;
+        lambda = cap.lambda, offset = cap.offset;
+    }
+    return rounded_hit(s, r, rho, lambda, offset, centre);
 }
 
 BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
@@ -416,13 +458,112 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
         out.verdict = BoxCast::Verdict::Miss;
         return out;
     }
-    // The normal from the core's point toward the hit (the offset as the entry formed it), the
-    // point on the grown surface there.
-    const Vec3 n = normalized_or(best_offset, normalized_or(s + best * r - best_centre, {0, 0, 1}));
+    return rounded_hit(s, r, rho, best, best_offset, best_centre);
+}
+
+BoxCast capsule_pair_cast(double ha, double hb, const Mat3& rot, Vec3 t, Vec3 r, double ra, double rb,
+                          double tolerance) {
+    BoxCast out;
+    // Axes within tolerance / 100 rad of parallel count as parallel (the parallelogram is then no
+    // wider than that share of B's length).
+    const double parallel = 0.01 * tolerance;
+    const double rho = ra + rb;
+    const Vec3 d = rot.col(2);
+    // B's centre q = t + lambda r against Q, the parallelogram {s e_z - u d} of A's segment less
+    // B's, grown by rho: the union of the prism over Q (|n.x| <= rho, n normal to Q) and the
+    // capsules of Q's four edges, so the first entry is the least over those five pieces (a point's
+    // nearest in Q is inside it or on an edge). Parallel segments make Q a segment along e_z.
+    const double sine = std::hypot(d.x, d.y);
+    BoxCast best;
+    best.verdict = BoxCast::Verdict::Miss;
+    bool declined = false;
+    auto take = [&](const BoxCast& piece, auto&& to_a_frame) {
+        if (piece.verdict == BoxCast::Verdict::Declined) declined = true;
+        if (piece.verdict != BoxCast::Verdict::Hit || !(best.verdict != BoxCast::Verdict::Hit || piece.toi < best.toi))
+            return;
+        best = piece;
+        best.normal = to_a_frame(piece.normal);
+    };
+    auto same = [](Vec3 v) { return v; };
+    auto from_b = [&](Vec3 v) { return rot * v; };
+    if (sine <= parallel) {
+        // Q lies within hb sine of its long axis, the segment along e_z of half length ha + hb |d.z|:
+        // that segment grown by rho + hb sine holds Q grown by rho, so its entry is never later, and
+        // earlier by at most hb sine over the approach.
+        take(ray_capsule(ha + hb * std::fabs(d.z), rho + hb * sine, t, r), same);
+    } else if (!(sine >= kParallelSine)) {
+        return out;  // nearly parallel: Q's normal carries the rounding of eps / sine
+    } else {
+        // The prism: q's coordinates on e_z, -d and n (by the dual basis), each linear in lambda,
+        // give a slab test (Cyrus-Beck). Q grown by rho lies within the prism's sides moved out by
+        // rho (rho |dual| in those coordinates): a ray missing that misses. An entry through a face
+        // |n.x| = rho is the first contact: before it n.x > rho along the ray, out of every edge's
+        // capsule. Any other entry lies on a side, within rho of its edge: the capsules decide.
+        const Vec3 n = (1 / sine) * Vec3{-d.y, d.x, 0};  // e_z x d, unit
+        const Vec3 dual_s = (1 / sine) * cross(-1.0 * d, n), dual_u = (1 / sine) * cross(n, Vec3{0, 0, 1});
+        const Vec3 axes[3] = {dual_s, dual_u, n};
+        const double half[3] = {ha, hb, rho};
+        const double grown[3] = {ha + rho * length(dual_s), hb + rho * length(dual_u), rho};
+        double x0[3], dx[3];
+        for (int k = 0; k < 3; ++k) x0[k] = dot(axes[k], t), dx[k] = dot(axes[k], r);
+        // The slab test against half extents h: the entry's lambda and axis (-1: the start is in).
+        auto slabs = [&](const double(&h)[3], double& enter) {
+            double leave = 1;
+            int axis = -1;
+            enter = 0;
+            for (int k = 0; k < 3; ++k) {
+                if (dx[k] == 0) {
+                    if (std::fabs(x0[k]) > h[k]) enter = 2;
+                    continue;
+                }
+                double lo = (-h[k] - x0[k]) / dx[k], hi = (h[k] - x0[k]) / dx[k];
+                if (lo > hi) std::swap(lo, hi);
+                if (lo > enter) enter = lo, axis = k;
+                if (hi < leave) leave = hi;
+            }
+            return enter <= leave ? axis : 3;
+        };
+        double enter = 0;
+        if (slabs(grown, enter) == 3) {
+            out.verdict = BoxCast::Verdict::Miss;
+            return out;
+        }
+        // A start in the prism, or within 1e-9 of the size of its faces, is the GJK cast's (touching
+        // or overlapping at the start), as ray_capsule leaves a start in or by a capsule.
+        const double band = 1e-9 * (ha + hb + rho);
+        if (std::fabs(x0[0]) <= ha && std::fabs(x0[1]) <= hb && std::fabs(x0[2]) <= rho + band) return out;
+        if (slabs(half, enter) == 2) {
+            best.verdict = BoxCast::Verdict::Hit;
+            best.toi = enter;
+            best.normal = dx[2] < 0 ? n : -1.0 * n;
+        } else {
+            // The edges along e_z (u = +-hb: centred at -u d) in A's axes; along d (s = +-ha: centred
+            // at s e_z) in B's. An edge whose line the ray's line passes farther than rho from
+            // (squares, both sides scaled alike) cannot be met.
+            auto beyond = [&](Vec3 offset, Vec3 e) {
+                const Vec3 m = cross(r, e);
+                const double k = dot(offset, m);
+                return k * k > 1.0000001 * rho * rho * dot(m, m);
+            };
+            for (const double u : {hb, -hb})
+                if (!beyond(t + u * d, {0, 0, 1})) take(ray_capsule(ha, rho, t + u * d, r), same);
+            for (const double sa : {ha, -ha})
+                if (!beyond(t - Vec3{0, 0, sa}, d))
+                    take(ray_capsule(hb, rho, mul_transpose(rot, t - Vec3{0, 0, sa}), mul_transpose(rot, r)), from_b);
+        }
+    }
+    if (declined || best.verdict != BoxCast::Verdict::Hit) {
+        if (!declined) out.verdict = BoxCast::Verdict::Miss;
+        return out;
+    }
+    // The contact: the segments' closest points at toi, each pushed out by its radius along the
+    // normal; they agree to rounding, the midpoint is taken.
+    const closed_form::SegmentPair cp = closed_form::closest_points(ha, t + best.toi * r, d, hb);
     out.verdict = BoxCast::Verdict::Hit;
-    out.toi = best;
-    out.normal = n;
-    out.point = best_centre + rho * n;
+    out.toi = best.toi;
+    out.normal = best.normal;
+    out.point = 0.5 * ((cp.p + ra * best.normal) + (cp.q - rb * best.normal));
+    if (!is_finite(out.point) || !is_finite(out.normal)) return BoxCast{};
     return out;
 }
 

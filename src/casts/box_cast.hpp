@@ -47,4 +47,17 @@ BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r);
 // plain box), is declined too: a segment has no face whose normal a contact could take.
 BoxCast ray_capsule(double h, double rho, Vec3 s, Vec3 r);
 
+// Two capsules moving by translations: A's segment from (0, 0, -ha) to (0, 0, ha) at the origin of
+// its frame, B's of half length hb along the third column of rot (B's axes in A's frame), centred
+// at t, B moving by r relative to A; radii ra and rb. B's centre as a ray against the parallelogram
+// of A's segment less B's grown by both radii: the least entry into the prism over its face and
+// the four edges' capsules (ray_capsule). normal and point: at the contact, A's frame, A at its
+// start pose. Segments within tolerance / 100 rad of parallel (sine of their angle) count as
+// parallel: the parallelogram is taken as its long axis grown by its half width, which moves the
+// time earlier by at most that width over the approach. Declined where any piece declines (a start
+// in or within 1e-9 of the size of the grown parallelogram, a radius below the entry's rounding),
+// for segments between that and 1e-4 rad of parallel, and for anything not finite.
+BoxCast capsule_pair_cast(double ha, double hb, const Mat3& rot, Vec3 t, Vec3 r, double ra, double rb,
+                          double tolerance);
+
 }  // namespace kairos::cast_detail

@@ -312,6 +312,12 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
             return closed(bc, -(rot * bc.normal), b_at + rot * (bc.point - ca.radius * bc.normal));
         }
     }
+    // Two capsules: B's centre as a ray against the parallelogram of their segments grown by both radii.
+    if (ca.core == Core::Segment && cb.core == Core::Segment && margin > 0) {
+        const BoxCast bc = cast_detail::capsule_pair_cast(
+            segment_half_length(*ca.shape), segment_half_length(*cb.shape), rot, t, r, ca.radius, cb.radius, tolerance);
+        if (bc.verdict != BoxCast::Verdict::Declined) return closed(bc, bc.normal, bc.point);
+    }
     // The iteration from lambda0 on, first searching along v0.
     auto cast_from = [&](double lambda0, Vec3 v0, uint32_t budget) {
         return with_support(ca, [&](auto sa) {

@@ -17,6 +17,7 @@
 #include "cast_test_support.hpp"
 #include "casts/box_cast.hpp"
 #include "casts/cast.hpp"
+#include "gjk/support_kernels.hpp"
 #include "shapes/shape.hpp"
 
 using namespace kairos;
@@ -238,4 +239,224 @@ TEST(CapsuleCast, GapsFromOneEMinusTwelveToOneEMinusTwoOnBothSides) {
     }
     EXPECT_GT(hits, cases / 3);
     EXPECT_GT(misses, cases / 3);
+}
+
+// ---- Two capsules (capsule_pair_cast) --------------------------------------------------------------
+
+namespace {
+
+// Whether shape_cast's closed form answers this capsule pair itself.
+bool pair_closed_form_answers(double ha, double ra, const Transform& pa, Vec3 ta, double hb, double rb,
+                              const Transform& pb, Vec3 tb) {
+    const kernels::RelativeFrame f = kernels::relative_frame(pa, pb);
+    return cast_detail::capsule_pair_cast(ha, hb, f.r, f.t, pa.to_local_direction(tb - ta), ra, rb, kTol).verdict !=
+           cast_detail::BoxCast::Verdict::Declined;
+}
+
+// The distance from world point x to capsule (h, rho) placed at pose, moved by lambda * motion.
+double off_capsule(Vec3 x, const Transform& pose, Vec3 motion, double lambda, double h, double rho) {
+    return to_segment(h, pose.apply_inverse(x - lambda * motion)) - rho;
+}
+
+}  // namespace
+
+// Random capsule pairs against the oracle, the GJK cast of the same capsules as hulls of their
+// segments' ends grown by balls, and the swapped order: the verdict, the time, the normal (opposite
+// in the swapped order, within 1e-6 rad of the oracle's), the contact point on both surfaces. Radii
+// from 1e-20 (below the entry's rounding: declined) to 3 sizes, half lengths 0.05 to 3, a third of the
+// pairs turned so that their axes are parallel (the parallelogram a segment) and a twelfth within
+// 1e-6 rad of it (declined), sizes 1e-3 to 1e3, up to 1e4 sizes from the origin.
+TEST(CapsuleCast, CapsulePairsMatchTheOracleAndTheGjkCast) {
+    const uint64_t seed = 56003;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1), len(0.05, 3);
+    int cases = 0, closed = 0, hits = 0, parallel_hits = 0, closed_hits = 0;
+    double worst_toi = 0, worst_angle = 0, worst_point = 0, worst_closed_toi = 0;
+    for (double scale : {1e-3, 1.0, 1e3}) {
+        for (double far : {0.0, 1e4}) {
+            for (double rounding : {1e-20, 1e-3, 0.3, 3.0}) {
+                for (int i = 0; i < 60; ++i) {
+                    const double ha = len(rng) * scale, hb = len(rng) * scale;
+                    const double ra = rounding * scale * (0.5 + u(rng)), rb = rounding * scale * (0.5 + u(rng));
+                    Solid a = make_solid(Kind::Capsule, ra, ha, {});
+                    Solid b = make_solid(Kind::Capsule, rb, hb, {});
+                    Cast c = random_cast(rng, a, b, far * scale * random_unit(rng));
+                    // Parallel: B turned as A about A's axis (exactly, a quarter turn), or 1e-6 rad off it.
+                    const int kind = i % 12;
+                    if (kind < 4 || kind == 11) {
+                        const double off = kind == 11 ? 1e-6 : 0.0;
+                        c.pb.rotation =
+                            c.pa.rotation *
+                            to_matrix(axis_angle({1, 0, 0}, off) *
+                                      (kind % 2 ? Quat{0, 0, 0.7071067811865476, 0.7071067811865476} : Quat{}));
+                    }
+                    place(a.body, c.pa);
+                    place(b.body, c.pb);
+                    const cast_oracle::Truth t = cast_oracle::toi(a.body, b.body, p3(c.ta), p3(c.tb));
+                    if (t.grazing || t.start_overlap) continue;
+                    const CapsuleShape ca(ra, ha), cb(rb, hb);
+                    const HullCapsule ga(ha, ra), gb(hb, rb);
+                    const CastResult r = shape_cast(ca, c.pa, c.ta, cb, c.pb, c.tb, kTol, kMaxIt);
+                    const CastResult s = shape_cast(cb, c.pb, c.tb, ca, c.pa, c.ta, kTol, kMaxIt);
+                    const CastResult g = shape_cast(ga.rounded, c.pa, c.ta, gb.rounded, c.pb, c.tb, kTol, kMaxIt);
+                    const auto [size, rlen, round_off, toi_slack] = slack_of(a.body, b.body, c, c.pa.translation, kTol);
+                    char what[160];
+                    std::snprintf(what, sizeof what, "seed %llu scale %g far %g rounding %g case %d",
+                                  static_cast<unsigned long long>(seed), scale, far, rounding, i);
+                    ++cases;
+                    EXPECT_EQ(r.hit, t.hit) << what;
+                    EXPECT_EQ(s.hit, t.hit) << what << ": the swapped order";
+                    EXPECT_EQ(g.hit, t.hit) << what << ": the GJK cast";
+                    const bool answered = pair_closed_form_answers(ha, ra, c.pa, c.ta, hb, rb, c.pb, c.tb);
+                    closed += answered;
+                    if (answered) {
+                        EXPECT_EQ(r.iterations, 1u) << what << ": the closed form's one iteration";
+                        EXPECT_NE(kind, 11) << what << ": axes 1e-6 rad from parallel are declined";
+                    }
+                    if (!t.hit || !r.hit) continue;
+                    ++hits;
+                    parallel_hits += kind < 4;
+                    const double truth = static_cast<double>(t.toi);
+                    EXPECT_NEAR(r.toi, truth, toi_slack) << what;
+                    EXPECT_NEAR(s.toi, truth, toi_slack) << what << ": the swapped order";
+                    EXPECT_NEAR(g.toi, truth, 4 * toi_slack) << what << ": the GJK cast";
+                    worst_toi = std::fmax(worst_toi, std::fabs(r.toi - truth) * rlen / size);
+                    if (answered) {
+                        ++closed_hits;
+                        worst_closed_toi = std::fmax(worst_closed_toi, std::fabs(r.toi - truth) * rlen / size);
+                    }
+                    EXPECT_LE(length(r.normal + s.normal), 1e-9) << what << ": the swapped order's normal";
+                    const Vec3 tn{static_cast<double>(t.normal.x), static_cast<double>(t.normal.y),
+                                  static_cast<double>(t.normal.z)};
+                    if (length(tn) > 0.5 && rounding > 1e-20) {  // parallel sides touch along a segment: no normal
+                        worst_angle = std::fmax(worst_angle, angle_between(r.normal, tn));
+                        EXPECT_LE(angle_between(r.normal, tn), 1e-6) << what;
+                    }
+                    const double on_a = std::fabs(off_capsule(r.point, c.pa, c.ta, r.toi, ha, ra));
+                    const double on_b = std::fabs(off_capsule(r.point, c.pb, c.tb, r.toi, hb, rb));
+                    worst_point = std::fmax(worst_point, std::fmax(on_a, on_b) / size);
+                    EXPECT_LE(on_a, 1e-9 * size + 100 * round_off) << what << ": the point off A";
+                    EXPECT_LE(on_b, 1e-9 * size + 100 * round_off) << what << ": the point off B";
+                }
+            }
+        }
+    }
+    std::printf(
+        "[capsule pairs] %d casts, %d hits (%d of parallel axes), %d answers by the closed form (%d hits); "
+        "worst time %.2g of the size (closed form %.2g), normal %.2g rad, point %.2g of the size\n",
+        cases, hits, parallel_hits, closed, closed_hits, worst_toi, worst_closed_toi, worst_angle, worst_point);
+    EXPECT_GT(hits, cases / 4);
+    EXPECT_LT(hits, 3 * cases / 4);
+    EXPECT_GT(parallel_hits, hits / 5);
+    // Declined: the hits and the near misses at radii of 1e-20 (a quarter of the casts), and
+    // everything with axes 1e-6 rad from parallel (a twelfth).
+    EXPECT_GT(closed, 7 * cases / 10);
+    EXPECT_LT(closed, 9 * cases / 10);
+    EXPECT_GT(closed_hits, hits / 2);
+}
+
+// Constructed contacts with known times, both orders, turned and 1e4 sizes from the origin: two
+// upright capsules side by side closing across their axes, stacked closing along them (cap onto
+// cap), crossed at right angles closing along their common perpendicular (side onto side), and a
+// cap onto the other's side.
+TEST(CapsuleCast, SideSideCapCapCrossedAndCapSideTimes) {
+    const uint64_t seed = 56004;
+    std::mt19937_64 rng(seed);
+    const double ha = 1.2, hb = 0.7, ra = 0.3, rb = 0.2, sum = ra + rb;
+    struct Case {
+        const char* name;
+        Quat qb;          // B's turn in A's frame
+        Vec3 start, dir;  // B's centre and unit motion, A's frame
+        double distance;  // how far B travels to contact
+    };
+    const Quat upright{}, across = axis_angle({1, 0, 0}, 1.5707963267948966);  // B's axis along -y
+    const Case cases[] = {
+        {"side by side", upright, {3, 0, 0.4}, {-1, 0, 0}, 3 - sum},
+        {"cap onto cap", upright, {0, 0, 5}, {0, 0, -1}, 5 - ha - hb - sum},
+        {"crossed", across, {4, 0.3, 0.5}, {-1, 0, 0}, 4 - sum},
+        {"cap onto side", across, {0, hb + 3, 0.6}, {0, -1, 0}, 3 - sum},
+    };
+    for (const Case& k : cases) {
+        for (double far : {0.0, 1e4}) {
+            const Quat q = random_quat(rng);
+            const Transform pa = make_transform(far * random_unit(rng), q);
+            const Transform pb = make_transform(pa.apply(k.start), q * k.qb);
+            const double motion = k.distance / 0.5;
+            const Vec3 tb = motion * (to_matrix(q) * k.dir);
+            const CapsuleShape a(ra, ha), b(rb, hb);
+            const double slack = 1e-13 * (1 + far) / motion;
+            const CastResult r = shape_cast(a, pa, {}, b, pb, tb, kTol, kMaxIt);
+            const CastResult s = shape_cast(b, pb, tb, a, pa, {}, kTol, kMaxIt);
+            EXPECT_TRUE(r.hit && s.hit) << k.name << " far " << far;
+            EXPECT_NEAR(r.toi, 0.5, slack) << k.name << " far " << far;
+            EXPECT_NEAR(s.toi, 0.5, slack) << k.name << " far " << far << ": swapped";
+            EXPECT_EQ(r.iterations, 1u) << k.name << ": the closed form";
+            EXPECT_EQ(s.iterations, 1u) << k.name << ": the closed form, swapped";
+            const Vec3 n = to_matrix(q) * (-1.0 * k.dir);  // each contact's normal opposes the motion
+            EXPECT_LE(angle_between(r.normal, n), 1e-12 * (1 + far)) << k.name << " far " << far;
+            EXPECT_LE(angle_between(s.normal, -1.0 * n), 1e-12 * (1 + far)) << k.name << " far " << far;
+            EXPECT_LE(std::fabs(off_capsule(r.point, pa, {}, r.toi, ha, ra)), 1e-12 * (1 + far)) << k.name;
+            EXPECT_LE(std::fabs(off_capsule(r.point, pb, tb, r.toi, hb, rb)), 1e-12 * (1 + far)) << k.name;
+        }
+    }
+}
+
+// Capsule pairs passing each other at gaps from 1e-12 to 1e-2 of the size on either side of
+// contact: crossed at right angles, parallel side by side, and 1e-3 rad from parallel (declined
+// to GJK). The hit agrees with the sign of the gap above 1e-9 of the size, and the swapped order
+// with it. A hit's time: crossed and parallel, where B's nearest point to A's axis comes within
+// the radii's sum of it, y = -sqrt(sum^2 - d^2) (exact in long double; near a graze the time moves
+// by the chord, sqrt(sum gap) over the motion); tilted, the GJK cast's on the same capsules as
+// hulls, within what its tolerance allows at a graze.
+TEST(CapsuleCast, CapsulePairsAtGapsFromOneEMinusTwelveToOneEMinusTwo) {
+    const double ha = 1.0, hb = 0.8, ra = 0.25, rb = 0.25, sum = ra + rb;
+    const CapsuleShape a(ra, ha), b(rb, hb);
+    const HullCapsule ga(ha, ra), gb(hb, rb);
+    int cases = 0, hits = 0, misses = 0, exact = 0;
+    for (double gap : {1e-12, 1e-9, 1e-6, 1e-4, 1e-2}) {
+        for (double sign : {-1.0, 1.0}) {
+            const double d = sum + sign * gap;  // the closest approach of the two cores
+            const struct {
+                const char* name;
+                Quat qb;
+                double front;  // B's nearest point to A's axis, ahead of its centre along y
+            } lines[] = {
+                {"crossed", axis_angle({1, 0, 0}, 1.5707963267948966), hb},
+                {"parallel", Quat{}, 0},
+                {"1e-3 rad from parallel", axis_angle({1, 0, 0}, 1e-3), -1},
+            };
+            for (const auto& l : lines) {
+                const Transform pa = make_transform({0, 0, 0}, Quat{});
+                const Transform pb = make_transform({d, -4, 0.3}, l.qb);
+                const Vec3 motion{0, 8, 0};
+                const CastResult r = shape_cast(a, pa, {}, b, pb, motion, kTol, kMaxIt);
+                const CastResult s = shape_cast(b, pb, motion, a, pa, {}, kTol, kMaxIt);
+                char what[120];
+                std::snprintf(what, sizeof what, "%s gap %g sign %g", l.name, gap, sign);
+                ++cases;
+                if (gap > 1e-9) {
+                    EXPECT_EQ(r.hit, sign < 0) << what;
+                    EXPECT_EQ(s.hit, sign < 0) << what << ": swapped";
+                }
+                hits += r.hit;
+                misses += !r.hit;
+                if (!r.hit || sign > 0) continue;
+                if (l.front >= 0) {
+                    using R = long double;
+                    const R y = -std::sqrt(R(sum) * R(sum) - R(d) * R(d));
+                    const double truth = double((y - R(l.front) + 4) / 8);
+                    EXPECT_NEAR(r.toi, truth, 1e-13) << what;
+                    EXPECT_NEAR(s.toi, truth, 1e-13) << what << ": swapped";
+                    ++exact;
+                } else {
+                    const CastResult g = shape_cast(ga.rounded, pa, {}, gb.rounded, pb, motion, kTol, kMaxIt);
+                    EXPECT_TRUE(g.hit) << what;
+                    EXPECT_NEAR(r.toi, g.toi, 1e-5) << what;
+                }
+            }
+        }
+    }
+    EXPECT_GT(hits, cases / 3);
+    EXPECT_GT(misses, cases / 3);
+    EXPECT_EQ(exact, 10);
 }
