@@ -469,6 +469,12 @@ BoxCast capsule_pair_cast(double ha, double hb, const Mat3& rot, Vec3 t, Vec3 r,
     const double parallel = 0.01 * tolerance;
     const double rho = ra + rb;
     const Vec3 d = rot.col(2);
+    // ray_capsule's ranges for the pieces' sizes, offsets and motions, before the slabs read a miss
+    // (products of coordinates beyond them overflow), and a motion above 1e-9 of the size.
+    const double size = ha + hb + rho;
+    const double reach = size + std::fabs(t.x) + std::fabs(t.y) + std::fabs(t.z);
+    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
+    if (!(reach < 1e100) || !(motion < 1e100) || !(size > 1e-100) || !(motion > 1e-9 * size)) return out;
     // B's centre q = t + lambda r against Q, the parallelogram {s e_z - u d} of A's segment less
     // B's, grown by rho: the union of the prism over Q (|n.x| <= rho, n normal to Q) and the
     // capsules of Q's four edges, so the first entry is the least over those five pieces (a point's
@@ -530,7 +536,7 @@ BoxCast capsule_pair_cast(double ha, double hb, const Mat3& rot, Vec3 t, Vec3 r,
         }
         // A start in the prism, or within 1e-9 of the size of its faces, is the GJK cast's (touching
         // or overlapping at the start), as ray_capsule leaves a start in or by a capsule.
-        const double band = 1e-9 * (ha + hb + rho);
+        const double band = 1e-9 * size;
         if (std::fabs(x0[0]) <= ha && std::fabs(x0[1]) <= hb && std::fabs(x0[2]) <= rho + band) return out;
         if (slabs(half, enter) == 2) {
             best.verdict = BoxCast::Verdict::Hit;
@@ -538,12 +544,15 @@ BoxCast capsule_pair_cast(double ha, double hb, const Mat3& rot, Vec3 t, Vec3 r,
             best.normal = dx[2] < 0 ? n : -1.0 * n;
         } else {
             // The edges along e_z (u = +-hb: centred at -u d) in A's axes; along d (s = +-ha: centred
-            // at s e_z) in B's. An edge whose line the ray's line passes farther than rho from
-            // (squares, both sides scaled alike) cannot be met.
+            // at s e_z) in B's. An edge whose line the ray's line passes farther than rho from cannot
+            // be met: |offset.m| / |m| > rho, m = r x e, with k's rounding (eps of |offset| |m| per
+            // term) taken off first; squares that overflow or underflow keep the edge.
             auto beyond = [&](Vec3 offset, Vec3 e) {
                 const Vec3 m = cross(r, e);
-                const double k = dot(offset, m);
-                return k * k > 1.0000001 * rho * rho * dot(m, m);
+                const double slack = 8 * kEps * (std::fabs(offset.x) + std::fabs(offset.y) + std::fabs(offset.z)) *
+                                     (std::fabs(m.x) + std::fabs(m.y) + std::fabs(m.z));
+                const double k = std::fabs(dot(offset, m)) - slack;
+                return k > 0 && k * k > rho * rho * dot(m, m) && std::isfinite(k * k);
             };
             for (const double u : {hb, -hb})
                 if (!beyond(t + u * d, {0, 0, 1})) take(ray_capsule(ha, rho, t + u * d, r), same);

@@ -460,3 +460,30 @@ TEST(CapsuleCast, CapsulePairsAtGapsFromOneEMinusTwelveToOneEMinusTwo) {
     EXPECT_GT(misses, cases / 3);
     EXPECT_EQ(exact, 10);
 }
+
+// Offsets and motions beyond the closed form's range (1e100; products of coordinates there
+// overflow and a slab test would read a miss): declined, and the GJK cast answers. B starts 1e120
+// away and passes through A, or 10 beside it; the same at 1e-120 sizes for the range's other end.
+TEST(CapsuleCast, CapsulePairsBeyondTheClosedFormsRangeGoToGjk) {
+    for (const double scale : {1e120, 1e-120}) {
+        const double far = scale > 1 ? scale : 1.0;
+        const double unit = scale > 1 ? 1.0 : scale;
+        const CapsuleShape a(0.3 * unit, 1.0 * unit), b(0.2 * unit, 0.7 * unit);
+        for (const double beside : {0.0, 10.0}) {
+            const Transform pa = make_transform({0, 0, 0}, Quat{});
+            const Transform pb = make_transform({far, beside * unit, 0}, axis_angle({1, 0, 0}, 1.0));
+            const Vec3 motion{-2 * far, 0, 0};
+            const kernels::RelativeFrame f = kernels::relative_frame(pa, pb);
+            const cast_detail::BoxCast bc =
+                cast_detail::capsule_pair_cast(1.0 * unit, 0.7 * unit, f.r, f.t, motion, 0.3 * unit, 0.2 * unit, kTol);
+            if (scale > 1) {
+                EXPECT_EQ(bc.verdict, cast_detail::BoxCast::Verdict::Declined) << "beside " << beside;
+            }
+            const CastResult r = shape_cast(a, pa, {}, b, pb, motion, kTol, kMaxIt);
+            EXPECT_EQ(r.hit, beside == 0) << "scale " << scale << " beside " << beside;
+            if (r.hit) {
+                EXPECT_NEAR(r.toi, 0.5, 1e-9) << "scale " << scale;
+            }
+        }
+    }
+}
