@@ -178,8 +178,35 @@ private:
             x_ = x_new;
             w = x_ - p;
             moved_ = true;
+        } else if (passes_beside(v, vw - offset, p)) {
+            return false;
         }
         return true;
+    }
+
+    // x stays put though the plane holds it well clear of C: the crossing's lambda is below
+    // rounding (a start 1e-300 beside a point with a motion of 1e62: lambda 3e-362 underflowed),
+    // and the loop could only stop on a rounding rule, read as a hit. A plane parallel to the ray
+    // that holds x off C proves a miss, but a normal built by rounding (v less its part along r)
+    // tilts by eps, and over a motion 1e340 times the gap the ray crosses it. r's components
+    // swapped in pairs, one negated, are normal to r exactly (their dot product with r is
+    // r_i r_j - r_j r_i): the three such planes through C's supports are tried. Asked only for a
+    // gap above 2^-20 of |x| + |p| (a clip at convergence that leaves x put costs nothing).
+    bool passes_beside(Vec3 v, double gap, Vec3 p) {
+        if (!(gap > 0x1p-20 * std::sqrt(dot(v, v)) * (max_abs(x_) + max_abs(p)))) return false;
+        const Vec3 normals[3] = {{r_.y, -r_.x, 0}, {0, r_.z, -r_.y}, {-r_.z, 0, r_.x}};
+        for (Vec3 n : normals) {
+            const double m = max_abs(n);
+            if (!(m > 0) || !std::isfinite(m)) continue;
+            n = std::ldexp(1.0, -std::ilogb(m)) * n;  // a power of two keeps it normal to r exactly
+            if (dot(n, v) < 0) n = -n;
+            Vec3 a, b;
+            const Vec3 q = sup_(n, a, b);
+            const double offset = margin_ > 0 ? margin_ * std::sqrt(dot(n, n)) : 0.0;
+            const double rounding = 32 * std::numeric_limits<double>::epsilon() * (max_abs(x_) + max_abs(q) + margin_);
+            if (dot(n, x_ - q) - offset > rounding) return true;
+        }
+        return false;
     }
 
     // A guard fired (rule 5, rule 6, or a stall) while ||v|| is still large: the simplex went bad

@@ -669,6 +669,59 @@ TEST(RayCast, APointSizedShapeAtTheSmallestScales) {
     EXPECT_GT(beside, 150);  // random motions almost never pass within rounding of the point
 }
 
+// A fuzz finding kin to the one above: from 1e-300 beside the same shape with a motion of 8.7e61,
+// the ray crosses the plane that holds its start off the point at lambda 3e-362, which underflows:
+// the loop stayed put, stopped on a repeated support point and read a hit at toi 0 (the ray passes
+// 1.4e-300 away). Starts 1e-250 .. 1e-307 with motions 1e40 .. 1e300 of them: a ray beside the
+// point (the point shape's closed form misses it) must miss, and one aimed at the point must hit;
+// the same shape grown by a ball of 0.9 of the start's scale agrees with the ball's closed form.
+TEST(RayCast, APointSizedShapeWithAMotionBeyondLambdasRange) {
+    const uint64_t seed = 978;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const PointShape point;
+    const MinkowskiSumShape sum(point, point);
+    const Transform at = make_transform({0, 0, 0}, Quat{});
+    int beside = 0, aimed = 0, ball_hits = 0;
+    for (double start : {1e-250, 1e-300, 1e-307})
+        for (double length : {1e40, 1e62, 1e150, 1e300})
+            for (int i = 0; i < 30; ++i) {
+                const Vec3 o = start * Vec3{u(rng), u(rng), u(rng)};
+                const Vec3 m = length * Vec3{u(rng), u(rng), u(rng)};
+                const CastResult truth = ray_cast(point, at, o, m, 1e-10, 256);
+                const CastResult r = ray_cast(sum, at, o, m, 1e-10, 256);
+                if (!truth.hit) {
+                    ++beside;
+                    EXPECT_FALSE(r.hit) << "start " << start << " length " << length << " case " << i << " seed "
+                                        << seed << ": toi " << r.toi << " termination " << int(r.termination);
+                }
+                const SphereShape ball(0.9 * start);
+                const MinkowskiSumShape round(point, ball);
+                const CastResult ball_truth = ray_cast(ball, at, o, m, 1e-10, 256);
+                const CastResult rb = ray_cast(round, at, o, m, 1e-10, 256);
+                ball_hits += ball_truth.hit;
+                EXPECT_EQ(rb.hit, ball_truth.hit) << "ball: start " << start << " length " << length << " case " << i;
+                // Aimed: the motion through the origin, its crossing's lambda below the smallest double.
+                // A power of two (exact, applied by ldexp: the factor itself can pass 2^1023).
+                const int k = std::ilogb(length) - std::ilogb(start);
+                const Vec3 back{-std::ldexp(o.x, k), -std::ldexp(o.y, k), -std::ldexp(o.z, k)};
+                ++aimed;
+                const CastResult h = ray_cast(sum, at, o, back, 1e-10, 256);
+                EXPECT_TRUE(h.hit) << "start " << start << " length " << length << " case " << i << " seed " << seed;
+                // x(2^-k) = 0 exactly; 2^-k underflows to a subnormal or 0 past the doubles' range.
+                const double toi = std::ldexp(1.0, -k);
+                EXPECT_LE(h.toi, toi) << "start " << start << " length " << length << " case " << i << " seed " << seed;
+                EXPECT_GE(h.toi, 0.5 * toi)
+                    << "start " << start << " length " << length << " case " << i << " seed " << seed;
+            }
+    std::printf("point-sized shape, motions of 1e40 .. 1e300: %d rays beside, %d aimed, %d ball hits\n", beside, aimed,
+                ball_hits);
+    EXPECT_GT(beside, 300);
+    EXPECT_GT(aimed, 300);
+    EXPECT_GT(ball_hits, 60);  // the ball of 0.9 of the start's scale: both verdicts exercised
+    EXPECT_LT(ball_hits, 300);
+}
+
 // A fuzz finding: a unit sphere cast onto a capsule stretched by a transform to 1.4e5 long and
 // 0.12 thin stopped on "no progress" 1e-4 short of contact with a normal 15 degrees off, so the
 // normal's plane cut 3.5 deep into the capsule at toi. The normal must still separate the shapes
