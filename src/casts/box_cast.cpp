@@ -293,6 +293,15 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
 
 namespace {
 
+// The rounded closed forms' common range: a size above 1e-100, offsets and motions below 1e100
+// (products of coordinates beyond them over- or underflow), and a motion above 1e-9 of the size
+// (below it the step is a touch, the GJK cast's). False for NaN.
+bool in_closed_form_range(double size, Vec3 s, Vec3 r) {
+    const double reach = size + std::fabs(s.x) + std::fabs(s.y) + std::fabs(s.z);
+    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
+    return reach < 1e100 && motion < 1e100 && size > 1e-100 && motion > 1e-9 * size;
+}
+
 // A radius below the rounding of a ray's entry into the box h grown by it (eps of the start's and
 // the motion's coordinates): no edge or corner is left to round (ray_rounded_box).
 bool radius_below_entry_rounding(Vec3 h, double rho, Vec3 s, Vec3 r) {
@@ -320,11 +329,9 @@ BoxCast ray_capsule(double h, double rho, Vec3 s, Vec3 r) {
     BoxCast out;
     // The preconditions of ray_rounded_box for the box (0, 0, h) grown by rho, and its start test.
     const double size = h + rho;
-    const double reach = size + std::fabs(s.x) + std::fabs(s.y) + std::fabs(s.z);
-    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
-    if (!(reach < 1e100) || !(motion < 1e100) || !(size > 1e-100) || !(rho >= 0)) return out;
+    if (!(rho >= 0) || !in_closed_form_range(size, s, r) || radius_below_entry_rounding({0, 0, h}, rho, s, r))
+        return out;
     const double band = 1e-9 * size;
-    if (!(motion > band) || radius_below_entry_rounding({0, 0, h}, rho, s, r)) return out;
     const Vec3 core{0, 0, closed_form::clamp_to(s.z, h)};
     if (!(closed_form::safe_length(s - core) - rho > band)) return out;
     // The capsule lies in the infinite cylinder of radius rho about the z axis: a ray that never
@@ -350,11 +357,8 @@ BoxCast ray_capsule(double h, double rho, Vec3 s, Vec3 r) {
 BoxCast ray_rounded_box(Vec3 h, double rho, Vec3 s, Vec3 r) {
     BoxCast out;
     const double size = h.x + h.y + h.z + rho;
-    const double reach = size + std::fabs(s.x) + std::fabs(s.y) + std::fabs(s.z);
-    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
-    if (!(reach < 1e100) || !(motion < 1e100) || !(size > 1e-100) || !(rho >= 0)) return out;
-    const double band = 1e-9 * size;
-    if (!(motion > band)) return out;
+    if (!(rho >= 0) || !in_closed_form_range(size, s, r)) return out;
+    const double band = 1e-9 * size, motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
     // A start within the band of the rounded box, or in it, is the GJK cast's (touching at the start).
     const double gap = closed_form::safe_length(s - closed_form::box_nearest(h, s)) - rho;
     if (!(gap > band)) return out;
@@ -469,12 +473,9 @@ BoxCast capsule_pair_cast(double ha, double hb, const Mat3& rot, Vec3 t, Vec3 r,
     const double parallel = 0.01 * tolerance;
     const double rho = ra + rb;
     const Vec3 d = rot.col(2);
-    // ray_capsule's ranges for the pieces' sizes, offsets and motions, before the slabs read a miss
-    // (products of coordinates beyond them overflow), and a motion above 1e-9 of the size.
+    // ray_capsule's range for the pieces, checked before the slabs can read a miss.
     const double size = ha + hb + rho;
-    const double reach = size + std::fabs(t.x) + std::fabs(t.y) + std::fabs(t.z);
-    const double motion = std::fabs(r.x) + std::fabs(r.y) + std::fabs(r.z);
-    if (!(reach < 1e100) || !(motion < 1e100) || !(size > 1e-100) || !(motion > 1e-9 * size)) return out;
+    if (!in_closed_form_range(size, t, r)) return out;
     // B's centre q = t + lambda r against Q, the parallelogram {s e_z - u d} of A's segment less
     // B's, grown by rho: the union of the prism over Q (|n.x| <= rho, n normal to Q) and the
     // capsules of Q's four edges, so the first entry is the least over those five pieces (a point's

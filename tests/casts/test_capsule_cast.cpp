@@ -328,7 +328,9 @@ TEST(CapsuleCast, CapsulePairsMatchTheOracleAndTheGjkCast) {
                     EXPECT_LE(length(r.normal + s.normal), 1e-9) << what << ": the swapped order's normal";
                     const Vec3 tn{static_cast<double>(t.normal.x), static_cast<double>(t.normal.y),
                                   static_cast<double>(t.normal.z)};
-                    if (length(tn) > 0.5 && rounding > 1e-20) {  // parallel sides touch along a segment: no normal
+                    // The oracle has no normal where parallel sides touch along a segment; radii of 1e-20
+                    // make segments, declined to GJK, whose normal carries the tolerance's tilt.
+                    if (length(tn) > 0.5 && rounding > 1e-20) {
                         worst_angle = std::fmax(worst_angle, angle_between(r.normal, tn));
                         EXPECT_LE(angle_between(r.normal, tn), 1e-6) << what;
                     }
@@ -486,4 +488,83 @@ TEST(CapsuleCast, CapsulePairsBeyondTheClosedFormsRangeGoToGjk) {
             }
         }
     }
+}
+
+// Capsules of half length 0 (balls) as A, as B and as both: the parallelogram is a segment or a
+// point, and its edges' capsules coincide. Random casts against the oracle and in both orders.
+// Then pairs touching or overlapping at the start (gaps -0.1 to +1e-12 of the size along a random
+// direction, closing): the closed form declines them (the GJK cast's conventions for a start in
+// contact), and both orders hit at once.
+TEST(CapsuleCast, CapsulePairsOfZeroLengthAndTouchingAtTheStart) {
+    const uint64_t seed = 57001;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double lengths[3][2] = {{0, 0.7}, {1.2, 0}, {0, 0}};
+    int cases = 0, hits = 0, closed = 0;
+    for (const auto& hl : lengths) {
+        const double ha = hl[0], hb = hl[1];
+        for (int i = 0; i < 120; ++i) {
+            const double ra = 0.2 + u(rng), rb = 0.2 + u(rng);
+            Solid a = make_solid(Kind::Capsule, ra, ha, {});
+            Solid b = make_solid(Kind::Capsule, rb, hb, {});
+            const Cast c = random_cast(rng, a, b, (i % 2 ? 1e3 : 0.0) * random_unit(rng));
+            place(a.body, c.pa);
+            place(b.body, c.pb);
+            const cast_oracle::Truth t = cast_oracle::toi(a.body, b.body, p3(c.ta), p3(c.tb));
+            if (t.grazing || t.start_overlap) continue;
+            const CapsuleShape ca(ra, ha), cb(rb, hb);
+            const CastResult r = shape_cast(ca, c.pa, c.ta, cb, c.pb, c.tb, kTol, kMaxIt);
+            const CastResult s = shape_cast(cb, c.pb, c.tb, ca, c.pa, c.ta, kTol, kMaxIt);
+            const auto [size, rlen, round_off, toi_slack] = slack_of(a.body, b.body, c, c.pa.translation, kTol);
+            char what[120];
+            std::snprintf(what, sizeof what, "seed %llu ha %g hb %g case %d", static_cast<unsigned long long>(seed), ha,
+                          hb, i);
+            ++cases;
+            closed += pair_closed_form_answers(ha, ra, c.pa, c.ta, hb, rb, c.pb, c.tb);
+            EXPECT_EQ(r.hit, t.hit) << what;
+            EXPECT_EQ(s.hit, t.hit) << what << ": the swapped order";
+            if (!t.hit || !r.hit || !s.hit) continue;
+            ++hits;
+            EXPECT_NEAR(r.toi, static_cast<double>(t.toi), toi_slack) << what;
+            EXPECT_NEAR(s.toi, static_cast<double>(t.toi), toi_slack) << what << ": the swapped order";
+            EXPECT_LE(length(r.normal + s.normal), 1e-9) << what << ": the swapped order's normal";
+            EXPECT_LE(std::fabs(off_capsule(r.point, c.pa, c.ta, r.toi, ha, ra)), 1e-9 * size + 100 * round_off)
+                << what << ": the point off A";
+            EXPECT_LE(std::fabs(off_capsule(r.point, c.pb, c.tb, r.toi, hb, rb)), 1e-9 * size + 100 * round_off)
+                << what << ": the point off B";
+        }
+    }
+    std::printf("[zero-length capsules] %d casts, %d hits, %d answered by the closed form\n", cases, hits, closed);
+    EXPECT_GT(hits, cases / 4);
+    EXPECT_LT(hits, 3 * cases / 4);
+    EXPECT_GT(closed, cases / 2);  // the pieces are balls and capsules: answered, not declined
+
+    // Touching or overlapping at the start: B's segment placed so that the cores' closest points lie
+    // sum + gap apart along a direction normal to both axes, B closing along it.
+    int touching = 0;
+    for (const double gap : {-0.1, -1e-9, 0.0, 1e-12}) {
+        for (int i = 0; i < 40; ++i) {
+            const double ha = i % 4 == 0 ? 0.0 : 1.2, hb = i % 4 == 1 ? 0.0 : 0.7, ra = 0.3, rb = 0.2;
+            const Quat qa = random_quat(rng);
+            const Mat3 ma = to_matrix(qa);
+            // B turned about the x axis of A's frame: both axes lie in A's yz plane, x is normal to both.
+            const Quat qb = qa * axis_angle({1, 0, 0}, 3.0 * u(rng));
+            const Vec3 side = ma * Vec3{1, 0, 0};
+            const Vec3 base = (i % 2 ? 1e3 : 0.0) * random_unit(rng);
+            const Transform pa = make_transform(base, qa);
+            const Transform pb = make_transform(base + (ra + rb + gap) * side, qb);
+            const Vec3 tb = -2.0 * side + 0.5 * random_unit(rng);
+            const CapsuleShape ca(ra, ha), cb(rb, hb);
+            char what[120];
+            std::snprintf(what, sizeof what, "seed %llu gap %g case %d", static_cast<unsigned long long>(seed), gap, i);
+            ++touching;
+            EXPECT_FALSE(pair_closed_form_answers(ha, ra, pa, {}, hb, rb, pb, tb)) << what;
+            const CastResult r = shape_cast(ca, pa, {}, cb, pb, tb, kTol, kMaxIt);
+            const CastResult s = shape_cast(cb, pb, tb, ca, pa, {}, kTol, kMaxIt);
+            EXPECT_TRUE(r.hit && s.hit) << what;
+            EXPECT_LE(r.toi, 1e-9) << what;
+            EXPECT_LE(s.toi, 1e-9) << what << ": the swapped order";
+        }
+    }
+    EXPECT_EQ(touching, 160);
 }
