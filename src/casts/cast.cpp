@@ -379,10 +379,14 @@ CastResult shape_cast(const Shape& a, const Transform& pose_a, Vec3 translation_
         // size: the cores touch at toi) have no direction between them: a segment 4747 long
         // crossing a capsule's of radius 7e-300 got one 87 degrees off their cross product, and
         // the shapes overlapped by 20.9 across it at toi (fuzz_queries). The closed form's
-        // direction is kept when it separates the shapes at toi at least as well as the cast's.
+        // direction is kept when it separates the shapes at toi at least as well as the cast's. A
+        // gap above 2^-30 of the coordinates' scale holds the direction to 1e-6 rad: no check.
+        const double coords = max_abs(at_a.translation) + max_abs(at_b.translation) + max_abs(cd.point_a) +
+                              max_abs(cd.point_b);
         if (!cd.overlap && dot(cd.unit, cd.unit) > 0.5 && is_finite(mid) &&
             dot(nw, translation_b - translation_a) < 0 &&
-            separation(a, at_a, b, at_b, nw) >= separation(a, at_a, b, at_b, out.normal)) {
+            (cd.distance > 0x1p-30 * coords ||
+             separation(a, at_a, b, at_b, nw) >= separation(a, at_a, b, at_b, out.normal))) {
             out.normal = nw;
             out.point = at_a.apply(mid);
         }
