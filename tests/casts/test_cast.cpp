@@ -673,8 +673,9 @@ TEST(RayCast, APointSizedShapeAtTheSmallestScales) {
 // the ray crosses the plane that holds its start off the point at lambda 3e-362, which underflows:
 // the loop stayed put, stopped on a repeated support point and read a hit at toi 0 (the ray passes
 // 1.4e-300 away). Starts 1e-250 .. 1e-307 with motions 1e40 .. 1e300 of them: a ray beside the
-// point (the point shape's closed form misses it) must miss, and one aimed at the point must hit;
-// the same shape grown by a ball of 0.9 of the start's scale agrees with the ball's closed form.
+// point (the point shape's closed form misses it) must miss, as a ray and as a shape cast of the
+// shape against itself, and one aimed at the point must hit; the same shape grown by a ball of 0.9
+// of the start's scale agrees with the ball's closed form.
 TEST(RayCast, APointSizedShapeWithAMotionBeyondLambdasRange) {
     const uint64_t seed = 978;
     std::mt19937_64 rng(seed);
@@ -695,6 +696,9 @@ TEST(RayCast, APointSizedShapeWithAMotionBeyondLambdasRange) {
                     EXPECT_FALSE(r.hit) << "start " << start << " length " << length << " case " << i << " seed "
                                         << seed << ": toi " << r.toi << " termination " << int(r.termination);
                 }
+                // The same as a shape cast (A - B, the pair's support): B the shape, moving.
+                const CastResult sc = shape_cast(sum, at, {}, sum, make_transform(o, Quat{}), m, 1e-10, 256);
+                EXPECT_EQ(sc.hit, truth.hit) << "shape cast: start " << start << " length " << length << " case " << i;
                 const SphereShape ball(0.9 * start);
                 const MinkowskiSumShape round(point, ball);
                 const CastResult ball_truth = ray_cast(ball, at, o, m, 1e-10, 256);
