@@ -3,6 +3,7 @@
 // no allocation per iteration). All work happens in A's local frame; results go back to the world.
 #include "gjk/gjk.hpp"
 #include "gjk/bend.hpp"
+#include "gjk/box_pair_distance.hpp"
 #include "gjk/closed_form_distance.hpp"
 #include "gjk/core_distance.hpp"
 #include "gjk/loop_rules.hpp"
@@ -469,7 +470,8 @@ DistanceResult gjk_distance(const Shape& a, const Transform& pose_a, const Shape
     bool closed = closed_form_pair(ca, cb);  // no simplex to seed the next query with
     if (closed) {
         l = closed_form_distance(ca, pose_a, cb, pose_b, center_offset);
-    } else if (parallel_axes_distance(ca, pose_a, cb, pose_b, tolerance, l, center_offset)) {
+    } else if (parallel_axes_distance(ca, pose_a, cb, pose_b, tolerance, l, center_offset) ||
+               box_pair_distance(ca, pose_a, cb, pose_b, l, center_offset)) {
         closed = true;
     } else {
         l = with_pair(ca, pose_a, cb, pose_b, [&](const auto& pair, double margin) {

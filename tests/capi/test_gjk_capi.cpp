@@ -72,14 +72,17 @@ TEST(GjkCapi, RoundShapesAndSettings) {
     EXPECT_NEAR(r.distance, 2 - 0.75, 1e-14);
     EXPECT_NEAR(r.axis.x, -1, 1e-14);  // from the sphere toward the capsule
     qs.max_iterations = 1;
-    kairos_shape* b = nullptr;
+    // A box and a cylinder (two boxes apart have a closed form, which needs no iteration).
+    kairos_shape *b = nullptr, *c = nullptr;
     ASSERT_EQ(kairos_shape_box({1, 2, 3}, &b), KAIROS_OK);
+    ASSERT_EQ(kairos_shape_cylinder(1, 2, &c), KAIROS_OK);
     const kairos_pose turned = {{4, 1, 0}, {0.2, 0.3, 0.1, std::sqrt(1 - 0.04 - 0.09 - 0.01)}};
-    ASSERT_EQ(kairos_distance(b, &pc, b, &turned, &qs, &r), KAIROS_OK);
+    ASSERT_EQ(kairos_distance(b, &pc, c, &turned, &qs, &r), KAIROS_OK);
     EXPECT_EQ(r.iterations, 1u);
     EXPECT_EQ(r.termination, KAIROS_TERMINATION_MAX_ITERATIONS);
     EXPECT_TRUE(std::isfinite(r.distance));
     kairos_shape_release(b);
+    kairos_shape_release(c);
 }
 
 TEST(GjkCapi, BadInputLeavesOutputsUntouched) {

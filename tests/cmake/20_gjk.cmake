@@ -4,6 +4,7 @@ kairos_gtest(test_gjk SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_gjk.cpp ${CMA
              ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_support_kernels.cpp ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_near_ranking.cpp
              LIBS kairos_core)
 kairos_gtest(test_closed_forms SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_closed_forms.cpp
+             ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_box_pair_distance.cpp
              ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_rigid_placement.cpp
              ${CMAKE_CURRENT_SOURCE_DIR}/gjk/test_rigid_placement_edges.cpp LIBS kairos_core)
 # The same queries through the shared library's C ABI.

@@ -444,8 +444,9 @@ TEST(GjkHard, DegenerateShapes) {
     EXPECT_TRUE(r.intersecting);
     r = gjk_distance(*p, at({3, 0, 0}), *p, at({}), kTol, 256);
     expect_distance(r, 3, 1e-15);
-    // A guard of one iteration ends with MaxIterations and a finite answer.
-    ShapePtr b = box({1, 1, 1});
+    // A guard of one iteration ends with MaxIterations and a finite answer (boxes as hulls: two
+    // boxes apart have a closed form, which needs no iteration).
+    ShapePtr b = hull(box_vertices({1, 1, 1}));
     r = gjk_distance(*b, at({}), *b, at({3, 1, 1}, normalized(Quat{0.1, 0.2, 0.3, 1})), kTol, 1);
     expect_finite(r);
     EXPECT_EQ(r.termination, Termination::MaxIterations);
