@@ -117,22 +117,46 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
     const double allowance = 64 * kEps * reach;
     if (!(lower > allowance)) return false;  // overlapping, or touching within rounding
 
+    // A candidate pair of points (one on each box, A's frame) is the distance when its distance
+    // is within the allowance of a lower bound: the axes' (`lower`), or the separation along the
+    // pair's own direction, from the boxes' supports (a vertex by an edge, whose direction is
+    // none of the 15). On success the unit is `axis`, or the pair's direction when that is zero.
     Vec3 pa, pb, unit;
+    auto certify = [&](Vec3 qa, Vec3 qb, Vec3 axis) {
+        const Vec3 gap = qb - qa;
+        const double len = length(gap);
+        if (!(len > 0) || !is_finite(gap)) return false;
+        bool ok = len <= lower + allowance;
+        const Vec3 dir = (1 / len) * gap;
+        if (!ok) {
+            const double reach_a = ha[0] * std::fabs(dir.x) + ha[1] * std::fabs(dir.y) + ha[2] * std::fabs(dir.z);
+            double reach_b = 0;
+            for (int k = 0; k < 3; ++k)
+                reach_b += hb[k] * std::fabs(fb.m[0][k] * dir.x + fb.m[1][k] * dir.y + fb.m[2][k] * dir.z);
+            ok = dot(dir, rf.t) - reach_a - reach_b >= len - allowance;
+            axis = Vec3{};
+        }
+        if (!ok) return false;
+        pa = qa, pb = qb;
+        unit = dot(axis, axis) > 0 ? axis : dir;
+        return true;
+    };
+    auto clamp_to_box = [](const double(&h)[3], const double(&p)[3]) {
+        return Vec3{closed_form::clamp_to(p[0], h[0]), closed_form::clamp_to(p[1], h[1]),
+                    closed_form::clamp_to(p[2], h[2])};
+    };
     bool found = false;
     // A face's witness first when its axis is among the best (a face resting on a face ties with
-    // the axes of edges parallel to it).
+    // the axes of edges parallel to it). The incident point's nearest point of the face's box is
+    // its foot on the face when that lies within the face, else on the face's rim.
     if (face_sep >= edge_sep - allowance) {
         double u[3], p[3];
         if (face < 3) {
             const int i = face;
-            if (face_witness(ha, i, face_sign, hb, fb, allowance, u, p)) {
-                pb = {p[0], p[1], p[2]};
-                pa = pb;
-                pa[i] = face_sign * ha[i];
-                unit = Vec3{};
-                unit[i] = face_sign;
-                found = true;
-            }
+            const bool over = face_witness(ha, i, face_sign, hb, fb, allowance, u, p);
+            Vec3 axis{};
+            axis[i] = face_sign;
+            found = certify(clamp_to_box(ha, p), {p[0], p[1], p[2]}, over ? axis : Vec3{});
         } else {
             // B's face toward A, in B's frame: A's axes are the rows of B's matrix, its centre
             // -m^T t. A's point comes back in A's own coordinates (u), B's through B's pose in A.
@@ -142,15 +166,10 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
                 for (int c = 0; c < 3; ++c) fa.m[r][c] = fb.m[c][r];
                 fa.c[r] = -(fb.m[0][r] * t[0] + fb.m[1][r] * t[1] + fb.m[2][r] * t[2]);
             }
-            if (face_witness(hb, j, -face_sign, ha, fa, allowance, u, p)) {
-                pa = {u[0], u[1], u[2]};
-                p[j] = -face_sign * hb[j];
-                pb = rf.t + rf.r * Vec3{p[0], p[1], p[2]};
-                unit = face_sign * rf.r.col(j);
-                found = true;
-            }
+            const bool over = face_witness(hb, j, -face_sign, ha, fa, allowance, u, p);
+            found =
+                certify({u[0], u[1], u[2]}, rf.t + rf.r * clamp_to_box(hb, p), over ? face_sign * rf.r.col(j) : Vec3{});
         }
-        if (found && !(length(pb - pa) <= lower + allowance)) found = false;
     }
     if (!found && edge >= 0 && edge_sep >= face_sep - allowance) {
         const int i = edge / 3, j = edge % 3, i1 = (i + 1) % 3, i2 = (i + 2) % 3;
@@ -168,11 +187,9 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
         const Vec3 d = rf.r.col(j), c = b0 - a0;
         const closed_form::SegmentPair sp =
             closed_form::closest_points(ha[i], {c[i1], c[i2], c[i]}, {d[i1], d[i2], d[i]}, hb[j]);
-        pa = a0;
-        pa[i] += sp.s;
-        pb = b0 + sp.u * d;
-        unit = n;
-        found = length(pb - pa) <= lower + allowance;
+        Vec3 qa = a0;
+        qa[i] += sp.s;
+        found = certify(qa, b0 + sp.u * d, n);
     }
     if (!found || !is_finite(pa) || !is_finite(pb)) return false;
     center_offset = rf.t;
