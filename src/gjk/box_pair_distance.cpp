@@ -145,6 +145,10 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
         return Vec3{closed_form::clamp_to(p[0], h[0]), closed_form::clamp_to(p[1], h[1]),
                     closed_form::clamp_to(p[2], h[2])};
     };
+    // Axes within rounding of parallel to a face (moving along them changes the height by 4 eps of
+    // the reach at most): the incident feature is an edge or a face. Any wider, and the witness
+    // point's height would carry that much error into the answer.
+    const double flat = 4 * kEps * reach;
     bool found = false;
     // A face's witness first when its axis is among the best (a face resting on a face ties with
     // the axes of edges parallel to it). The incident point's nearest point of the face's box is
@@ -153,7 +157,7 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
         double u[3], p[3];
         if (face < 3) {
             const int i = face;
-            const bool over = face_witness(ha, i, face_sign, hb, fb, allowance, u, p);
+            const bool over = face_witness(ha, i, face_sign, hb, fb, flat, u, p);
             Vec3 axis{};
             axis[i] = face_sign;
             found = certify(clamp_to_box(ha, p), {p[0], p[1], p[2]}, over ? axis : Vec3{});
@@ -166,7 +170,7 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
                 for (int c = 0; c < 3; ++c) fa.m[r][c] = fb.m[c][r];
                 fa.c[r] = -(fb.m[0][r] * t[0] + fb.m[1][r] * t[1] + fb.m[2][r] * t[2]);
             }
-            const bool over = face_witness(hb, j, -face_sign, ha, fa, allowance, u, p);
+            const bool over = face_witness(hb, j, -face_sign, ha, fa, flat, u, p);
             found =
                 certify({u[0], u[1], u[2]}, rf.t + rf.r * clamp_to_box(hb, p), over ? face_sign * rf.r.col(j) : Vec3{});
         }

@@ -116,6 +116,7 @@ TEST(BoxPairDistance, RandomCubesNeedlesAndSlabsAgainstTheOracle) {
     EXPECT_GT(e.closed, 4 * e.pairs / 10);
     EXPECT_LT(e.closed, e.pairs);
     EXPECT_LT(e.touching, 10);
+    EXPECT_LT(e.worst_closed, 4 * kEps);
 }
 
 // A box resting on a box: faces parallel, or tilted by 1e-12 to 1e-3 rad about a random horizontal
@@ -152,6 +153,9 @@ TEST(BoxPairDistance, BoxesRestingOnBoxesAtGapsFromOneEMinusTwelve) {
         "[resting boxes] %d pairs, %d answered by the closed form; worst error %.2g of the reach (closed form %.2g)\n",
         e.pairs, e.closed, e.worst, e.worst_closed);
     EXPECT_GT(e.closed, e.pairs / 2);
+    // Exact: a few eps of the reach (an incident edge taken as parallel to the face within 64 eps
+    // of the reach, not 4, put 9.3e-15 here).
+    EXPECT_LT(e.worst_closed, 4 * kEps);
 }
 
 // Overlapping boxes are the loop's (its conventions for contact); boxes touching to the placement's
