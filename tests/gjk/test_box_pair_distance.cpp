@@ -2,7 +2,7 @@
 // The distance of two boxes by the separating axis test with witness points (gjk/box_pair_distance),
 // against the long double polytope oracle (brute force over the boxes' vertices, no supports):
 // random pairs of cubes, needles and slabs at gaps from 1e-12 to 1 of the size, turned at random,
-// up to 1e4 sizes from the origin, sizes 1e-3 to 1e3, both argument orders; boxes resting on boxes
+// up to 1e4 sizes from the origin, sizes 1e-120 to 1e120, both argument orders; boxes resting on boxes
 // (faces parallel, or tilted by 1e-12 to 1e-3 rad) at the same gaps; and the pairs it must leave
 // to the GJK loop (overlapping, touching).
 #include <gtest/gtest.h>
@@ -92,7 +92,7 @@ TEST(BoxPairDistance, RandomCubesNeedlesAndSlabsAgainstTheOracle) {
     std::uniform_real_distribution<double> u(0.5, 1.5);
     Errors e;
     const Vec3 forms[3] = {{1, 1, 1}, {3, 0.02, 0.03}, {1.5, 1.2, 0.01}};  // cube, needle, slab
-    for (double scale : {1e-3, 1.0, 1e3})
+    for (double scale : {1e-120, 1e-3, 1.0, 1e3, 1e120})
         for (double far : {0.0, 1e4})
             for (double gap : {1e-12, 1e-9, 1e-6, 1e-3, 0.1, 1.0})
                 for (int i = 0; i < 12; ++i) {
@@ -116,7 +116,9 @@ TEST(BoxPairDistance, RandomCubesNeedlesAndSlabsAgainstTheOracle) {
     EXPECT_GT(e.closed, 4 * e.pairs / 10);
     EXPECT_LT(e.closed, e.pairs);
     EXPECT_LT(e.touching, 10);
-    EXPECT_LT(e.worst_closed, 4 * kEps);
+    // Boxes 1e-3 in size 10 from the origin carry the world coordinates' rounding (42 eps of the
+    // reach measured); near the origin the answers are within 2 eps.
+    EXPECT_LT(e.worst_closed, 64 * kEps);
 }
 
 // A box resting on a box: faces parallel, or tilted by 1e-12 to 1e-3 rad about a random horizontal
