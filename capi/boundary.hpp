@@ -105,11 +105,13 @@ struct BodyPose {
 // Every check with its message; read_pose takes it only for input its fast test cannot pass.
 BodyPose read_pose_checked(const kairos_pose* pose, const char* function, const char* name);
 // q scaled to unit length, nn = its squared length (> 0), exactly as kairos::normalized does.
-// A caller's unit quaternion has nn within an ulp or two of 1, whose square root rounds to 1:
-// q / 1 is q, so the four divisions (about 20 cycles of latency) are skipped, bit for bit.
+// A caller's unit quaternion often has a square root of nn that rounds to 1: q / 1 is q, so the
+// four divisions (about 20 cycles of latency) are skipped, bit for bit. That happens exactly when
+// nn is 1 or the next double above (sqrt(1 - 2^-53) rounds to 1 - 2^-53): tested on nn itself, the
+// branch does not wait for the square root.
 inline Quat unit_quat(const kairos_quat& q, double nn) {
+    if (nn == 1 || nn == 1 + 0x1p-52) return {q.x, q.y, q.z, q.w};
     const double n = std::sqrt(nn);
-    if (n == 1) return {q.x, q.y, q.z, q.w};
     return {q.x / n, q.y / n, q.z / n, q.w / n};
 }
 // The test that decides almost every pose with a few comparisons, accepting only poses the full
