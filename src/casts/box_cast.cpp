@@ -10,6 +10,7 @@
 // gaps below 1e-154 (shapes near 1e-150 in size) underflow and read as touching: declined too.
 #include "casts/box_cast.hpp"
 
+#include "gjk/box_axes.hpp"
 #include "gjk/closed_forms.hpp"
 
 #include <cmath>
@@ -193,7 +194,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
                                 {std::fabs(m[1][0]), std::fabs(m[1][1]), std::fabs(m[1][2])},
                                 {std::fabs(m[2][0]), std::fabs(m[2][1]), std::fabs(m[2][2])}};
     for (int i = 0; i < 3; ++i) {  // A's faces: L = e_i
-        const double w = ea[i] + hb.x * abs_r[i][0] + hb.y * abs_r[i][1] + hb.z * abs_r[i][2];
+        const double w = box_axes::face_a_width(ea, eb, abs_r, i);
         if (const Verdict v = axis(i, 1, tv[i], rv[i], w, 0); v != Verdict::Hit) {
             out.verdict = v;
             return out;
@@ -201,7 +202,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
     }
     for (int j = 0; j < 3; ++j) {  // B's faces: L = b_j
         const Vec3 b = rot.col(j);
-        const double w = eb[j] + ha.x * abs_r[0][j] + ha.y * abs_r[1][j] + ha.z * abs_r[2][j];
+        const double w = box_axes::face_b_width(ea, eb, abs_r, j);
         if (const Verdict v = axis(3 + j, 1, dot(b, t), dot(b, r), w, t_sum); v != Verdict::Hit) {
             out.verdict = v;
             return out;
@@ -210,11 +211,9 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
     for (int i = 0; i < 3; ++i) {  // edges: L = e_i x b_j
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
-            const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            // e_i x b_j has components R_{i2 j} at i1 and -R_{i1 j} at i2 (0 at i): the products
-            // with its zero left out, as they add nothing.
-            const double l1 = -m[i2][j], l2 = m[i1][j];
-            const double len_sq = l1 * l1 + l2 * l2;
+            // e_i x b_j is 0 at i: the products with that component are left out, as they add nothing.
+            const box_axes::EdgeAxis l = box_axes::edge_axis(ea, eb, m, abs_r, i, j);
+            const double len_sq = l.len_sq;
             // Edges at an angle a (|L| = sin a) apart: parallel ones add nothing the face axes
             // miss, and below a = tolerance / 100 the axis adds less than that share of the size.
             // The axis's direction carries rounding of eps / a, which tilts its bound by that
@@ -222,11 +221,8 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
             // the closed form would need more care than GJK: the cast is declined.
             if (len_sq <= parallel_sq) continue;
             if (len_sq < sharp_sq) return out;
-            // |L.e_k| = |R_{k j}| for k != i, and |L.b_k| = |R_{i m}| for the third index m.
-            const double w =
-                ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j] + eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
-            const double c = l1 * tv[i1] + l2 * tv[i2], s = l1 * rv[i1] + l2 * rv[i2];
-            if (const Verdict v = axis(6 + 3 * i + j, len_sq, c, s, w, t_sum); v != Verdict::Hit) {
+            const double c = l.l1 * tv[i1] + l.l2 * tv[i2], s = l.l1 * rv[i1] + l.l2 * rv[i2];
+            if (const Verdict v = axis(6 + 3 * i + j, len_sq, c, s, l.w, t_sum); v != Verdict::Hit) {
                 out.verdict = v;
                 return out;
             }
@@ -275,12 +271,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         p = cb + rot * pb;
     } else {
         const int i = (id - 6) / 3, j = (id - 6) % 3;
-        Vec3 a0{};
-        for (int k = 0; k < 3; ++k)
-            if (k != i) a0[k] = n[k] >= 0 ? ha[k] : -ha[k];
-        Vec3 b0 = cb;
-        for (int k = 0; k < 3; ++k)
-            if (k != j) b0 += (dot(rot.col(k), n) <= 0 ? hb[k] : -hb[k]) * rot.col(k);
+        const Vec3 a0 = box_axes::edge_mid_a(ha, i, n), b0 = box_axes::edge_mid_b(hb, rot, cb, j, n);
         p = edge_contact(a0, i, ha[i], b0, rot.col(j), hb[j]);
     }
     if (!is_finite(p) || !is_finite(n)) return out;

@@ -148,7 +148,7 @@ private:
         if (!(std::fabs(vw) > 0x1p-900)) [[unlikely]] {
             const double m = max_abs(v);
             if (m > 0 && m < 0x1p-400) {
-                v = std::ldexp(1.0, -std::ilogb(m)) * v;
+                v = unit_scale(m) * v;
                 vw = dot(v, w);
             }
         }
@@ -198,7 +198,7 @@ private:
         for (Vec3 n : normals) {
             const double m = max_abs(n);
             if (!(m > 0) || !std::isfinite(m)) continue;
-            n = std::ldexp(1.0, -std::ilogb(m)) * n;  // a power of two keeps it normal to r exactly
+            n = unit_scale(m) * n;  // keeps it normal to r exactly
             if (dot(n, v) < 0) n = -n;
             Vec3 a, b;
             const Vec3 q = sup_(n, a, b);
@@ -319,7 +319,7 @@ private:
         double size_sq = std::max(sx_.max_norm_sq(), 0x1p-20 * extent_sq_), margin = margin_;
         const double m = nv < 0x1p-800 ? max_abs(sx_.v) : 0.0;
         if (m > 0) [[unlikely]] {
-            const double k = std::ldexp(1.0, -std::ilogb(m));
+            const double k = unit_scale(m);
             const Vec3 v = k * sx_.v;
             nv = dot(v, v);
             size_sq = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gjk/box_axes.hpp"
 #include "gjk/closed_forms.hpp"
 #include "shapes/shape.hpp"
 
@@ -87,29 +88,23 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
     int face = -1, edge = -1;
     double face_sign = 1, edge_sign = 1;
     for (int i = 0; i < 3; ++i) {  // A's faces
-        const double w = ha[i] + hb[0] * abs_m[i][0] + hb[1] * abs_m[i][1] + hb[2] * abs_m[i][2];
-        const double sep = std::fabs(t[i]) - w;
+        const double sep = std::fabs(t[i]) - box_axes::face_a_width(ha, hb, abs_m, i);
         if (sep > face_sep) face_sep = sep, face = i, face_sign = t[i] >= 0 ? 1.0 : -1.0;
     }
     for (int j = 0; j < 3; ++j) {  // B's faces
         const double c = fb.m[0][j] * t[0] + fb.m[1][j] * t[1] + fb.m[2][j] * t[2];
-        const double w = hb[j] + ha[0] * abs_m[0][j] + ha[1] * abs_m[1][j] + ha[2] * abs_m[2][j];
-        const double sep = std::fabs(c) - w;
+        const double sep = std::fabs(c) - box_axes::face_b_width(ha, hb, abs_m, j);
         if (sep > face_sep) face_sep = sep, face = 3 + j, face_sign = c >= 0 ? 1.0 : -1.0;
     }
     lower = face_sep - unit_error;
-    for (int i = 0; i < 3; ++i) {  // edges: L = e_i x b_j, components -m[i2][j] at i1, m[i1][j] at i2
+    for (int i = 0; i < 3; ++i) {  // edges: L = e_i x b_j
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
-            const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            const double l1 = -fb.m[i2][j], l2 = fb.m[i1][j];
-            const double len_sq = l1 * l1 + l2 * l2;
-            if (!(len_sq > 1e-6)) continue;  // nearly parallel edges: the axis's direction is too rough
-            const double len = std::sqrt(len_sq);
-            const double w =
-                ha[i1] * abs_m[i2][j] + ha[i2] * abs_m[i1][j] + hb[j1] * abs_m[i][j2] + hb[j2] * abs_m[i][j1];
-            const double c = l1 * t[i1] + l2 * t[i2];
-            const double sep = (std::fabs(c) - w) / len;
+            const box_axes::EdgeAxis l = box_axes::edge_axis(ha, hb, fb.m, abs_m, i, j);
+            if (!(l.len_sq > 1e-6)) continue;  // nearly parallel edges: the axis's direction is too rough
+            const double len = std::sqrt(l.len_sq);
+            const double c = l.l1 * t[i1] + l.l2 * t[i2];
+            const double sep = (std::fabs(c) - l.w) / len;
             if (sep - unit_error / len > lower) lower = sep - unit_error / len;
             if (sep > edge_sep) edge_sep = sep, edge = 3 * i + j, edge_sign = c >= 0 ? 1.0 : -1.0;
         }
@@ -180,13 +175,7 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
         Vec3 l{};
         l[i1] = -fb.m[i2][j], l[i2] = fb.m[i1][j];
         const Vec3 n = (edge_sign / length(l)) * l;
-        // A's edge along e_i farthest toward B along n, and B's along b_j farthest toward A.
-        Vec3 a0{};
-        for (int k = 0; k < 3; ++k)
-            if (k != i) a0[k] = n[k] >= 0 ? ha[k] : -ha[k];
-        Vec3 b0 = rf.t;
-        for (int k = 0; k < 3; ++k)
-            if (k != j) b0 += (dot(rf.r.col(k), n) > 0 ? -hb[k] : hb[k]) * rf.r.col(k);
+        const Vec3 a0 = box_axes::edge_mid_a(ha3, i, n), b0 = box_axes::edge_mid_b(hb3, rf.r, rf.t, j, n);
         // closed_form::closest_points with the axes turned so that e_i is its e_z.
         const Vec3 d = rf.r.col(j), c = b0 - a0;
         const closed_form::SegmentPair sp =

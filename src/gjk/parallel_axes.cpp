@@ -127,7 +127,7 @@ bool parallel_axes_distance(const CoreOf& ca, const Transform& pose_a, const Cor
     // would) is left to the loop.
     const double extent = reach_a + reach_b + max_abs(t);
     if (!(extent > 0) || !std::isfinite(extent) || !(std::fmin(reach_a, reach_b) >= 0x1p-100 * extent)) return false;
-    const double sc = std::ldexp(1.0, -std::ilogb(extent));
+    const double sc = unit_scale(extent);
     double xa[4], za[4], xb[4], zb[4];
     const int na = axial_section(ca, xa, za), nb = axial_section(cb, xb, zb);
     // The plane through both axes: x toward B's axis, from A's; any through A's when they coincide.

@@ -39,6 +39,9 @@ inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline double max_of(double a, double b) { return (a >= b || std::isnan(b)) ? a : b; }
 inline double min_of(double a, double b) { return (a <= b || std::isnan(b)) ? a : b; }
 inline double max_abs(Vec3 a) { return max_of(std::fabs(a.x), max_of(std::fabs(a.y), std::fabs(a.z))); }
+// The power of two 2^-ilogb(m) that brings m (finite, > 0) into [1, 2): multiplying by it is
+// exact unless the product under- or overflows, and keeps a vector's direction to the bit.
+inline double unit_scale(double m) { return std::ldexp(1.0, -std::ilogb(m)); }
 inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 inline Vec3 cwise_min(Vec3 a, Vec3 b) { return {min_of(a.x, b.x), min_of(a.y, b.y), min_of(a.z, b.z)}; }
 inline Vec3 cwise_max(Vec3 a, Vec3 b) { return {max_of(a.x, b.x), max_of(a.y, b.y), max_of(a.z, b.z)}; }
