@@ -212,7 +212,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
             // e_i x b_j is 0 at i: the products with that component are left out, as they add nothing.
-            const box_axes::EdgeAxis l = box_axes::edge_axis(ea, eb, m, abs_r, i, j);
+            const box_axes::EdgeAxis l = box_axes::edge_axis(m, i, j);
             const double len_sq = l.len_sq;
             // Edges at an angle a (|L| = sin a) apart: parallel ones add nothing the face axes
             // miss, and below a = tolerance / 100 the axis adds less than that share of the size.
@@ -222,7 +222,8 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
             if (len_sq <= parallel_sq) continue;
             if (len_sq < sharp_sq) return out;
             const double c = l.l1 * tv[i1] + l.l2 * tv[i2], s = l.l1 * rv[i1] + l.l2 * rv[i2];
-            if (const Verdict v = axis(6 + 3 * i + j, len_sq, c, s, l.w, t_sum); v != Verdict::Hit) {
+            const double w = box_axes::edge_width(ea, eb, abs_r, i, j);
+            if (const Verdict v = axis(6 + 3 * i + j, len_sq, c, s, w, t_sum); v != Verdict::Hit) {
                 out.verdict = v;
                 return out;
             }
@@ -232,7 +233,7 @@ BoxCast box_box_cast(Vec3 ha, Vec3 hb, const Mat3& rot, Vec3 t, Vec3 r, double t
     const auto axis_vector = [&](int id) {
         if (id < 3) return unit_axis(id);
         if (id < 6) return rot.col(id - 3);
-        return cross(unit_axis((id - 6) / 3), rot.col((id - 6) % 3));
+        return box_axes::edge_axis_vector(m, (id - 6) / 3, (id - 6) % 3);
     };
     if (!apart_at_start) return out;  // touching or overlapping at the start
     // Near a graze or the step's end the verdict is within rounding of the other one.

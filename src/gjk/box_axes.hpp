@@ -20,17 +20,27 @@ inline double face_b_width(const double (&ha)[3], const double (&hb)[3], const d
 }
 
 // The edge axis L = e_i x b_j (not unit: |L| is the sine of the edges' angle). Its components
-// are l1 at index i1 = i + 1 and l2 at i2 = i + 2 (mod 3), 0 at i; w is both boxes' half widths
-// summed along L.
+// are l1 at index i1 = i + 1 and l2 at i2 = i + 2 (mod 3), 0 at i.
 struct EdgeAxis {
-    double l1, l2, len_sq, w;
+    double l1, l2, len_sq;
 };
-inline EdgeAxis edge_axis(const double (&ha)[3], const double (&hb)[3], const double (&m)[3][3],
-                          const double (&abs_m)[3][3], int i, int j) {
+inline EdgeAxis edge_axis(const double (&m)[3][3], int i, int j) {
+    const double l1 = -m[(i + 2) % 3][j], l2 = m[(i + 1) % 3][j];
+    return {l1, l2, l1 * l1 + l2 * l2};
+}
+// The same axis as a vector (its component i +0).
+inline Vec3 edge_axis_vector(const double (&m)[3][3], int i, int j) {
+    const EdgeAxis l = edge_axis(m, i, j);
+    Vec3 v{};
+    v[(i + 1) % 3] = l.l1;
+    v[(i + 2) % 3] = l.l2;
+    return v;
+}
+// Both boxes' half widths summed along the edge axis e_i x b_j. Apart from the axis's test for
+// parallel edges, which skips an axis before its widths are needed.
+inline double edge_width(const double (&ha)[3], const double (&hb)[3], const double (&abs_m)[3][3], int i, int j) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-    const double l1 = -m[i2][j], l2 = m[i1][j];
-    return {l1, l2, l1 * l1 + l2 * l2,
-            ha[i1] * abs_m[i2][j] + ha[i2] * abs_m[i1][j] + hb[j1] * abs_m[i][j2] + hb[j2] * abs_m[i][j1]};
+    return ha[i1] * abs_m[i2][j] + ha[i2] * abs_m[i1][j] + hb[j1] * abs_m[i][j2] + hb[j2] * abs_m[i][j1];
 }
 
 // The midpoints of the two edges an edge axis's contact lies on, n along that axis from A toward

@@ -100,11 +100,11 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
     for (int i = 0; i < 3; ++i) {  // edges: L = e_i x b_j
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
-            const box_axes::EdgeAxis l = box_axes::edge_axis(ha, hb, fb.m, abs_m, i, j);
+            const box_axes::EdgeAxis l = box_axes::edge_axis(fb.m, i, j);
             if (!(l.len_sq > 1e-6)) continue;  // nearly parallel edges: the axis's direction is too rough
             const double len = std::sqrt(l.len_sq);
             const double c = l.l1 * t[i1] + l.l2 * t[i2];
-            const double sep = (std::fabs(c) - l.w) / len;
+            const double sep = (std::fabs(c) - box_axes::edge_width(ha, hb, abs_m, i, j)) / len;
             if (sep - unit_error / len > lower) lower = sep - unit_error / len;
             if (sep > edge_sep) edge_sep = sep, edge = 3 * i + j, edge_sign = c >= 0 ? 1.0 : -1.0;
         }
@@ -172,8 +172,7 @@ bool box_pair_distance(const kernels::CoreOf& ca, const Transform& pose_a, const
     }
     if (!found && edge >= 0 && edge_sep >= face_sep - allowance) {
         const int i = edge / 3, j = edge % 3, i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-        Vec3 l{};
-        l[i1] = -fb.m[i2][j], l[i2] = fb.m[i1][j];
+        const Vec3 l = box_axes::edge_axis_vector(fb.m, i, j);
         const Vec3 n = (edge_sign / length(l)) * l;
         const Vec3 a0 = box_axes::edge_mid_a(ha3, i, n), b0 = box_axes::edge_mid_b(hb3, rf.r, rf.t, j, n);
         // closed_form::closest_points with the axes turned so that e_i is its e_z.
